@@ -1,0 +1,41 @@
+#include "imagenets/blocks/image.h"
+
+#include <cv_bridge/cv_bridge.h>
+
+namespace imagenets {
+namespace blocks {
+
+cv::Mat inputImage(const Context& ctx, const std::string& port, std::initializer_list<const char*> encodings,
+                   std::string* encoding, std_msgs::Header* header) {
+  auto msg = ctx.input<sensor_msgs::Image>(port);
+  if (!msg) throw BlockError("input '" + port + "': no image");
+  if (msg->width == 0 || msg->height == 0 || msg->data.empty()) {
+    throw BlockError("input '" + port + "': empty image (" + std::to_string(msg->width) + "x" +
+                     std::to_string(msg->height) + ")");
+  }
+  if (encodings.size() > 0) {
+    bool accepted = false;
+    std::string list;
+    for (const char* e : encodings) {
+      accepted = accepted || msg->encoding == e;
+      list += (list.empty() ? "" : ", ") + std::string(e);
+    }
+    if (!accepted) {
+      throw BlockError("input '" + port + "': encoding '" + msg->encoding + "' not accepted (expected " + list + ")");
+    }
+  }
+  if (encoding) *encoding = msg->encoding;
+  if (header) *header = msg->header;
+  try {
+    return cv_bridge::toCvShare(msg)->image;
+  } catch (const cv_bridge::Exception& e) {
+    throw BlockError("input '" + port + "': " + e.what());
+  }
+}
+
+sensor_msgs::ImagePtr toImageMsg(const cv::Mat& mat, const std::string& encoding, const std_msgs::Header& header) {
+  return cv_bridge::CvImage(header, encoding, mat).toImageMsg();
+}
+
+}  // namespace blocks
+}  // namespace imagenets

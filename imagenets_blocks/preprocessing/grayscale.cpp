@@ -1,0 +1,41 @@
+#include <map>
+
+#include <opencv2/imgproc.hpp>
+
+#include "imagenets/blocks/image.h"
+#include "imagenets/registry.h"
+
+namespace imagenets {
+namespace blocks {
+
+// Converts a colour image to 8-bit gray; a gray image passes through unchanged (same pointer).
+class Grayscale : public Block {
+ public:
+  Grayscale() {
+    addInput<sensor_msgs::Image>("image", "bgr8, rgb8, bgra8, rgba8 or mono8");
+    addOutput<sensor_msgs::Image>("image", "mono8");
+  }
+
+  void process(Context& ctx) override {
+    std::string encoding;
+    std_msgs::Header header;
+    cv::Mat in = inputImage(ctx, "image", {"bgr8", "rgb8", "bgra8", "rgba8", "mono8"}, &encoding, &header);
+    if (encoding == "mono8") {
+      ctx.setOutput("image", ctx.inputValue("image"));
+      return;
+    }
+    static const std::map<std::string, int> codes{{"bgr8", cv::COLOR_BGR2GRAY},
+                                                  {"rgb8", cv::COLOR_RGB2GRAY},
+                                                  {"bgra8", cv::COLOR_BGRA2GRAY},
+                                                  {"rgba8", cv::COLOR_RGBA2GRAY}};
+    cv::Mat gray;
+    cv::cvtColor(in, gray, codes.at(encoding));
+    ctx.output("image", toImageMsg(gray, "mono8", header));
+  }
+};
+
+}  // namespace blocks
+}  // namespace imagenets
+
+IMAGENETS_REGISTER_BLOCK(imagenets::blocks::Grayscale, "imagenets/Grayscale", "preprocessing",
+                         "Colour to 8-bit gray");

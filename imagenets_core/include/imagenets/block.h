@@ -1,0 +1,163 @@
+// The Block API. A block declares its typed ports and properties in its constructor and does its
+// work in process(). It knows nothing of nets, threads or ROS topics: the executor and the
+// nodelet host feed it through a Context.
+//
+//   class Threshold : public imagenets::Block {
+//    public:
+//     Threshold() {
+//       addInput<sensor_msgs::Image>("image", "8-bit gray image");
+//       addOutput<sensor_msgs::Image>("image", "binary image (0/255)");
+//       addProperty<int>("threshold", 128, "gray level above which a pixel is white").range(0, 255);
+//     }
+//     void process(imagenets::Context& ctx) override { ... }
+//   };
+//   IMAGENETS_REGISTER_BLOCK(Threshold, "imagenets/Threshold", "segmentation", "Fixed threshold");
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "imagenets/port_type.h"
+#include "imagenets/property.h"
+
+namespace imagenets {
+
+struct PortSpec {
+  std::string name;
+  const PortType* type = nullptr;
+  std::string doc;
+  bool optional = false;  // an optional input may stay empty; the block still runs
+};
+
+// What a block sees during one process() call: its inputs, a snapshot of its properties, and
+// where its outputs go. Several contexts of one block may be alive at once (feedback trials run in
+// parallel), so a block keeps per-run data here, not in members.
+class Context {
+ public:
+  Context(std::string block_name, const std::vector<PortSpec>& inputs,
+          const std::vector<PortSpec>& outputs, std::vector<Value> input_values,
+          PropertyValues properties);
+
+  const std::string& blockName() const { return block_name_; }
+
+  template <class M>
+  boost::shared_ptr<const M> input(const std::string& port) const {
+    return inputValue(port).as<M>();
+  }
+  bool hasInput(const std::string& port) const { return static_cast<bool>(inputValue(port)); }
+  const Value& inputValue(const std::string& port) const;
+
+  template <class M>
+  void output(const std::string& port, const boost::shared_ptr<const M>& msg) {
+    setOutput(port, PortType::of<M>().wrap(msg));
+  }
+  template <class M>
+  void output(const std::string& port, const boost::shared_ptr<M>& msg) {
+    output(port, boost::shared_ptr<const M>(msg));
+  }
+  void setOutput(const std::string& port, const Value& value);
+
+  template <class T>
+  T property(const std::string& name) const {
+    const PropertyValue& v = propertyValue(name);
+    if (const T* typed = std::get_if<T>(&v)) return *typed;
+    throw std::logic_error("block '" + block_name_ + "': property '" + name +
+                           "' read with the wrong C++ type");
+  }
+  const PropertyValue& propertyValue(const std::string& name) const;
+  const PropertyValues& properties() const { return properties_; }
+
+  std::vector<Value>& outputs() { return output_values_; }
+
+ private:
+  std::string block_name_;
+  const std::vector<PortSpec>& inputs_;
+  const std::vector<PortSpec>& outputs_;
+  std::vector<Value> input_values_;
+  std::vector<Value> output_values_;
+  PropertyValues properties_;
+};
+
+// An error a block reports about its input or configuration; the executor prefixes the block.
+struct BlockError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct BlockInfo;
+
+class Block {
+ public:
+  virtual ~Block() = default;
+
+  // Called once after the load-time property values are set. A block whose ports depend on a
+  // property (a sub-net, a port of configurable type) declares them here.
+  virtual void configure() {}
+  // Does the work. May run concurrently for feedback trials: keep per-run data in ctx.
+  virtual void process(Context& ctx) = 0;
+
+  const std::vector<PortSpec>& inputs() const { return inputs_; }
+  const std::vector<PortSpec>& outputs() const { return outputs_; }
+  const std::vector<PropertySpec>& propertySpecs() const { return property_specs_; }
+  const PortSpec* findInput(const std::string& name) const;
+  const PortSpec* findOutput(const std::string& name) const;
+  const PropertySpec* findProperty(const std::string& name) const;
+  int inputIndex(const std::string& name) const;   // -1 if none
+  int outputIndex(const std::string& name) const;  // -1 if none
+
+  // Current property values (thread-safe). setProperty validates and throws PropertyError.
+  PropertyValues propertyValues() const;
+  PropertyValue propertyValue(const std::string& name) const;
+  void setProperty(const std::string& name, const PropertyValue& value);
+
+  // Set by the registry when the block is created.
+  const BlockInfo* info() const { return info_; }
+  void setInfo(const BlockInfo* info) { info_ = info; }
+
+ protected:
+  friend class Net;  // adds the `feedback_trace` output to a block that gets feedback
+
+  template <class M>
+  PortSpec& addInput(const std::string& name, const std::string& doc) {
+    return addInput(name, PortType::of<M>(), doc);
+  }
+  template <class M>
+  PortSpec& addOptionalInput(const std::string& name, const std::string& doc) {
+    PortSpec& p = addInput(name, PortType::of<M>(), doc);
+    p.optional = true;
+    return p;
+  }
+  template <class M>
+  PortSpec& addOutput(const std::string& name, const std::string& doc) {
+    return addOutput(name, PortType::of<M>(), doc);
+  }
+  PortSpec& addInput(const std::string& name, const PortType& type, const std::string& doc);
+  PortSpec& addOutput(const std::string& name, const PortType& type, const std::string& doc);
+
+  template <class T>
+  PropertySpec& addProperty(const std::string& name, const T& default_value, const std::string& doc) {
+    return addPropertySpec(PropertySpec(name, PropertyTraits<T>::kind, default_value, doc));
+  }
+  PropertySpec& addProperty(const std::string& name, const char* default_value, const std::string& doc) {
+    return addProperty<std::string>(name, default_value, doc);
+  }
+  PropertySpec& addPropertySpec(PropertySpec spec);
+
+  // For configure(): the current value of a property.
+  template <class T>
+  T property(const std::string& name) const {
+    return std::get<T>(propertyValue(name));
+  }
+
+ private:
+  std::vector<PortSpec> inputs_, outputs_;
+  std::vector<PropertySpec> property_specs_;
+  mutable std::mutex values_mutex_;
+  PropertyValues values_;
+  const BlockInfo* info_ = nullptr;
+};
+
+}  // namespace imagenets

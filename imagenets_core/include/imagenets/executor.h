@@ -1,0 +1,117 @@
+// The executor runs a net in one process (paper 3.1): event flow, independent blocks in parallel
+// on a thread pool, and re-execution of only what is out of date. It is also the C++ embedding
+// API: no GUI and no ROS master needed.
+//
+//   auto exec = imagenets::Executor::loadFile("config/nets/threshold_demo.yaml");
+//   exec->run();
+//   auto binary = exec->output<sensor_msgs::Image>("threshold.image");
+//   exec->setProperty("threshold", "threshold", 72);
+//   exec->run();  // re-runs `threshold` and what is downstream of it, nothing else
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "imagenets/net.h"
+
+namespace imagenets {
+
+class ThreadPool;
+
+enum class BlockStatus { Pending, Ok, Failed, NotRun };
+const char* statusName(BlockStatus status);
+
+struct BlockStats {
+  BlockStatus status = BlockStatus::Pending;
+  std::string message;     // why it failed or did not run
+  size_t runs = 0;         // completed process() calls (feedback trials included)
+  double last_ms = 0.0;
+  double mean_ms = 0.0;
+  std::string last_error;  // the last exception text, kept after later successes
+};
+
+struct RunReport {
+  std::vector<std::string> ran;     // blocks that ran, in completion order
+  std::vector<std::string> failed;  // "block: message"
+  std::vector<std::string> not_run; // "block: reason"
+  bool ok() const { return failed.empty(); }
+};
+
+struct ExecutorOptions {
+  int threads = 0;  // 0 = number of cores
+};
+
+class Executor {
+ public:
+  explicit Executor(std::unique_ptr<Net> net, ExecutorOptions options = {});
+  static std::unique_ptr<Executor> loadFile(const std::string& path, ExecutorOptions options = {});
+  ~Executor();
+  Executor(const Executor&) = delete;
+  Executor& operator=(const Executor&) = delete;
+
+  const Net& net() const { return *net_; }
+  int threads() const;
+
+  // Runs every out-of-date block (all of them the first time), in event flow.
+  RunReport run();
+  // Re-runs one block and what is downstream of it.
+  RunReport runBlock(const std::string& block);
+
+  // Feeds an input port that no link feeds ("block.port"); marks the block out of date.
+  void setInput(const std::string& block_port, const Value& value);
+  template <class M>
+  void setInput(const std::string& block_port, const boost::shared_ptr<const M>& msg) {
+    setInput(block_port, PortType::of<M>().wrap(msg));
+  }
+
+  // Changes a property (validated; throws PropertyError / NetError naming it); marks the block
+  // out of date so the next run re-executes it and its downstream.
+  void setProperty(const std::string& block, const std::string& property, const PropertyValue& value);
+  void setPropertyText(const std::string& block, const std::string& property, const std::string& text);
+
+  // The cached value of an output port ("block.port"); empty if it has none.
+  Value output(const std::string& block_port) const;
+  template <class M>
+  boost::shared_ptr<const M> output(const std::string& block_port) const {
+    return output(block_port).as<M>();
+  }
+  BlockStats stats(const std::string& block) const;
+
+ private:
+  using Store = std::vector<std::vector<Value>>;        // per node, per output port
+  using Overrides = std::map<int, PropertyValues>;     // property values for one trial
+
+  void markOutOfDate(int node);
+  RunReport runOutOfDate();
+  // Runs `nodes` in event flow against `store`: a node starts when the nodes of the set that feed
+  // it are done; independent nodes run in parallel. Nodes outside the set keep their outputs. The
+  // core of run(), and of every feedback trial (with `overrides`, into a copy of the store).
+  void execute(const std::vector<int>& nodes, Store& store, RunReport& report, const Overrides* overrides);
+  void runNode(int node, Store& store, RunReport& report, const Overrides* overrides);
+  // Feedback (paper 3.4): sweeps the node's property over its candidates, each trial running the
+  // region between the node and its score; keeps the best trial's outputs in `store`.
+  void runFeedback(int node, Store& store, RunReport& report);
+  double runTrial(int node, double candidate, const Store& base, Store& trial_store);
+  std::vector<Value> gatherInputs(int node, const Store& store, std::string& missing) const;
+  void record(int node, BlockStatus status, const std::string& message, double ms, bool counted);
+
+  std::unique_ptr<Net> net_;
+  std::unique_ptr<ThreadPool> pool_;
+  mutable std::mutex mutex_;  // serialises the public API
+  Store outputs_;
+  std::vector<std::vector<Value>> external_inputs_;
+  std::vector<bool> out_of_date_;
+  std::vector<std::vector<int>> feedback_region_;  // per node with feedback: itself + path to the score
+  std::vector<int> absorbed_by_;                   // node -> the feedback node whose region holds it, or -1
+  mutable std::mutex stats_mutex_;
+  std::vector<BlockStats> stats_;
+  std::mutex report_mutex_;
+};
+
+}  // namespace imagenets

@@ -1,0 +1,16 @@
+// Draws a net as a Graphviz graph, as the paper's Designer shows it: blocks with their ports,
+// ports coloured by data type, links between them, feedback as a dashed edge from the score back
+// to the tuned block.
+#pragma once
+
+#include <string>
+
+#include "imagenets/net.h"
+
+namespace imagenets {
+
+// A stable colour per data type, the same in every drawing.
+std::string typeColor(const std::string& type_name);
+std::string toDot(const Net& net);
+
+}  // namespace imagenets

@@ -1,0 +1,143 @@
+// Nets: blocks plus links (output port -> input port), described in YAML and checked when built.
+//
+//   blocks:
+//     source:    {type: imagenets/ImageFileSource, properties: {path: ../images/scene.png}}
+//     gray:      {type: imagenets/Grayscale}
+//     threshold: {type: imagenets/Threshold, properties: {threshold: 60}}
+//   links:
+//     - source.image -> gray.image
+//     - gray.image -> threshold.image
+//
+// The same schema loads from a file or from a rosparam namespace (see the nodelet host).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "imagenets/block.h"
+
+namespace imagenets {
+
+struct SourceLocation {
+  std::string file;
+  int line = 0;  // 1-based; 0 when unknown
+  std::string str() const;  // "file:line" (or just "file")
+};
+
+// Every load error, each naming file, block, port or property and the offending value.
+class NetError : public std::runtime_error {
+ public:
+  explicit NetError(std::vector<std::string> errors);
+  const std::vector<std::string>& errors() const { return errors_; }
+
+ private:
+  std::vector<std::string> errors_;
+};
+
+struct PropertySetting {
+  std::string name;
+  std::string text;  // as written: YAML scalar or flow sequence
+  SourceLocation loc;
+};
+
+// Feedback (paper 3.4): tune one numeric property of the block to maximise (or minimise) a
+// score port downstream.
+struct FeedbackSpec {
+  std::string property;
+  std::vector<double> values;  // the candidates, from `from/to/step` or an explicit list
+  std::string score_block, score_port;
+  bool maximize = true;
+  std::string search = "exhaustive";  // or "coarse_to_fine"
+  bool parallel = true;               // trials run in parallel on the thread pool
+  SourceLocation loc;
+};
+
+struct BlockSpec {
+  std::string name;
+  std::string type;
+  std::vector<PropertySetting> properties;
+  std::optional<FeedbackSpec> feedback;
+  SourceLocation loc;
+};
+
+struct LinkSpec {
+  std::string from_block, from_port, to_block, to_port;
+  SourceLocation loc;
+};
+
+struct NetSpec {
+  std::string origin;    // file path or rosparam namespace, for messages
+  std::string base_dir;  // relative paths in properties resolve against it
+  std::vector<std::string> include_chain;  // files including this one (sub-nets), outermost first
+  std::vector<BlockSpec> blocks;
+  std::vector<LinkSpec> links;
+};
+
+// Parse only (no blocks created). Throw NetError for unreadable or malformed input.
+NetSpec parseNetFile(const std::string& path);
+NetSpec parseNetText(const std::string& yaml, const std::string& origin, const std::string& base_dir);
+
+// Resolves `$(find pkg)` and relative paths (against base_dir).
+std::string resolvePath(const std::string& path, const std::string& base_dir);
+
+// The net being built on this thread: lets a block's configure() resolve files relative to the
+// net file and see the chain of including files (sub-nets use it to refuse self-inclusion).
+class LoadContext {
+ public:
+  static const NetSpec* current();  // null outside Net::build
+  class Scope {
+   public:
+    explicit Scope(const NetSpec& spec);
+    ~Scope();
+
+   private:
+    const NetSpec* previous_;
+  };
+};
+
+struct Endpoint {
+  int node = -1;
+  int port = -1;
+  bool valid() const { return node >= 0; }
+};
+
+// A built net: blocks instantiated and configured, links resolved and type-checked, acyclic.
+class Net {
+ public:
+  struct Node {
+    std::string name;
+    std::unique_ptr<Block> block;
+    SourceLocation loc;
+    std::vector<Endpoint> input_links;  // per input port: the linked output, or invalid
+    std::vector<int> downstream;        // nodes fed by this one (unique)
+    std::optional<FeedbackSpec> feedback;
+  };
+
+  // Builds and validates; throws NetError listing every problem found. Nothing half-built
+  // survives a failed load.
+  static std::unique_ptr<Net> build(const NetSpec& spec);
+  static std::unique_ptr<Net> loadFile(const std::string& path);
+
+  const std::string& origin() const { return origin_; }
+  const std::string& baseDir() const { return base_dir_; }
+  const std::vector<Node>& nodes() const { return nodes_; }
+  Node& node(int i) { return nodes_[i]; }
+  const Node& node(int i) const { return nodes_[i]; }
+  int findNode(const std::string& name) const;  // -1 if none
+  const std::vector<int>& topologicalOrder() const { return order_; }
+  // "block.port" -> endpoint; throws NetError naming what is missing.
+  Endpoint resolveOutput(const std::string& block_port) const;
+  Endpoint resolveInput(const std::string& block_port) const;
+  // All nodes reachable downstream of `from` (excluding it).
+  std::vector<int> descendants(int from) const;
+
+ private:
+  std::string origin_, base_dir_;
+  std::vector<Node> nodes_;
+  std::vector<int> order_;
+};
+
+}  // namespace imagenets

@@ -1,0 +1,118 @@
+#include "imagenets/block.h"
+
+#include "imagenets/registry.h"
+
+namespace imagenets {
+
+Context::Context(std::string block_name, const std::vector<PortSpec>& inputs,
+                 const std::vector<PortSpec>& outputs, std::vector<Value> input_values,
+                 PropertyValues properties)
+    : block_name_(std::move(block_name)),
+      inputs_(inputs),
+      outputs_(outputs),
+      input_values_(std::move(input_values)),
+      output_values_(outputs.size()),
+      properties_(std::move(properties)) {}
+
+const Value& Context::inputValue(const std::string& port) const {
+  for (size_t i = 0; i < inputs_.size(); ++i) {
+    if (inputs_[i].name == port) return input_values_[i];
+  }
+  throw std::logic_error("block '" + block_name_ + "' has no input port '" + port + "'");
+}
+
+void Context::setOutput(const std::string& port, const Value& value) {
+  for (size_t i = 0; i < outputs_.size(); ++i) {
+    if (outputs_[i].name != port) continue;
+    if (value && value.type->name != outputs_[i].type->name) {
+      throw std::logic_error("block '" + block_name_ + "': output '" + port + "' is " +
+                             outputs_[i].type->name + ", not " + value.type->name);
+    }
+    output_values_[i] = value;
+    return;
+  }
+  throw std::logic_error("block '" + block_name_ + "' has no output port '" + port + "'");
+}
+
+const PropertyValue& Context::propertyValue(const std::string& name) const {
+  auto it = properties_.find(name);
+  if (it == properties_.end()) {
+    throw std::logic_error("block '" + block_name_ + "' has no property '" + name + "'");
+  }
+  return it->second;
+}
+
+namespace {
+template <class T>
+const T* findByName(const std::vector<T>& items, const std::string& name) {
+  for (const auto& item : items) {
+    if (item.name() == name) return &item;
+  }
+  return nullptr;
+}
+int indexOf(const std::vector<PortSpec>& ports, const std::string& name) {
+  for (size_t i = 0; i < ports.size(); ++i) {
+    if (ports[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+}  // namespace
+
+const PortSpec* Block::findInput(const std::string& name) const {
+  int i = indexOf(inputs_, name);
+  return i < 0 ? nullptr : &inputs_[i];
+}
+const PortSpec* Block::findOutput(const std::string& name) const {
+  int i = indexOf(outputs_, name);
+  return i < 0 ? nullptr : &outputs_[i];
+}
+int Block::inputIndex(const std::string& name) const { return indexOf(inputs_, name); }
+int Block::outputIndex(const std::string& name) const { return indexOf(outputs_, name); }
+
+const PropertySpec* Block::findProperty(const std::string& name) const {
+  return findByName(property_specs_, name);
+}
+
+PortSpec& Block::addInput(const std::string& name, const PortType& type, const std::string& doc) {
+  if (findInput(name)) throw std::logic_error("input port '" + name + "' declared twice");
+  inputs_.push_back(PortSpec{name, &type, doc, false});
+  return inputs_.back();
+}
+
+PortSpec& Block::addOutput(const std::string& name, const PortType& type, const std::string& doc) {
+  if (findOutput(name)) throw std::logic_error("output port '" + name + "' declared twice");
+  outputs_.push_back(PortSpec{name, &type, doc, false});
+  return outputs_.back();
+}
+
+PropertySpec& Block::addPropertySpec(PropertySpec spec) {
+  if (findProperty(spec.name())) throw std::logic_error("property '" + spec.name() + "' declared twice");
+  {
+    std::lock_guard<std::mutex> lock(values_mutex_);
+    values_[spec.name()] = spec.defaultValue();
+  }
+  property_specs_.push_back(std::move(spec));
+  return property_specs_.back();
+}
+
+PropertyValues Block::propertyValues() const {
+  std::lock_guard<std::mutex> lock(values_mutex_);
+  return values_;
+}
+
+PropertyValue Block::propertyValue(const std::string& name) const {
+  std::lock_guard<std::mutex> lock(values_mutex_);
+  auto it = values_.find(name);
+  if (it == values_.end()) throw std::logic_error("no property '" + name + "'");
+  return it->second;
+}
+
+void Block::setProperty(const std::string& name, const PropertyValue& value) {
+  const PropertySpec* spec = findProperty(name);
+  if (!spec) throw PropertyError("unknown property '" + name + "'");
+  PropertyValue checked = spec->validate(value);
+  std::lock_guard<std::mutex> lock(values_mutex_);
+  values_[name] = std::move(checked);
+}
+
+}  // namespace imagenets

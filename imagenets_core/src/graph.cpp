@@ -1,0 +1,117 @@
+#include "imagenets/graph.h"
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "imagenets/registry.h"
+
+namespace imagenets {
+
+std::string typeColor(const std::string& type_name) {
+  // Well-known types get fixed, distinct colours; others a hue from their name.
+  static const std::map<std::string, std::string> fixed{
+      {"sensor_msgs/Image", "#4e79a7"},       {"sensor_msgs/CameraInfo", "#f28e2b"},
+      {"geometry_msgs/TransformStamped", "#e15759"}, {"geometry_msgs/PoseArray", "#b07aa1"},
+      {"std_msgs/Float64", "#59a14f"},        {"sensor_msgs/JointState", "#edc948"},
+      {"sensor_msgs/PointCloud2", "#76b7b2"}, {"imagenets/FeedbackTrace", "#ff9da7"}};
+  auto it = fixed.find(type_name);
+  if (it != fixed.end()) return it->second;
+  // HSV (hue from the name, s=0.45, v=0.9) to #rrggbb.
+  const double h = static_cast<double>(std::hash<std::string>{}(type_name) % 360) / 60.0;
+  const double v = 0.9, c = v * 0.45, x = c * (1 - std::abs(std::fmod(h, 2.0) - 1)), m = v - c;
+  double rgb[3][6] = {{c, x, 0, 0, x, c}, {x, c, c, x, 0, 0}, {0, 0, x, c, c, x}};
+  const int sector = static_cast<int>(h) % 6;
+  char out[8];
+  std::snprintf(out, sizeof out, "#%02x%02x%02x", static_cast<int>((rgb[0][sector] + m) * 255),
+                static_cast<int>((rgb[1][sector] + m) * 255), static_cast<int>((rgb[2][sector] + m) * 255));
+  return out;
+}
+
+namespace {
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string color(const std::string& type) { return typeColor(type); }
+}  // namespace
+
+std::string toDot(const Net& net) {
+  std::ostringstream os;
+  std::set<std::string> types;
+  os << "digraph imagenet {\n  rankdir=LR;\n  node [shape=plaintext, fontname=\"Helvetica\"];\n"
+     << "  edge [fontname=\"Helvetica\", fontsize=9];\n";
+  os << "  label=\"" << escape(net.origin()) << "\"; labelloc=t;\n";
+  for (size_t i = 0; i < net.nodes().size(); ++i) {
+    const Net::Node& n = net.node(i);
+    const Block& b = *n.block;
+    const std::string type = b.info() ? b.info()->type : "?";
+    os << "  b" << i << " [label=<<table border=\"1\" cellborder=\"0\" cellspacing=\"1\" bgcolor=\"#f7f7f7\">";
+    os << "<tr><td colspan=\"2\"><b>" << escape(n.name) << "</b></td></tr>";
+    os << "<tr><td colspan=\"2\"><font point-size=\"9\">" << escape(type) << "</font></td></tr>";
+    const size_t rows = std::max(b.inputs().size(), b.outputs().size());
+    for (size_t r = 0; r < rows; ++r) {
+      os << "<tr>";
+      if (r < b.inputs().size()) {
+        const PortSpec& p = b.inputs()[r];
+        types.insert(p.type->name);
+        os << "<td port=\"i_" << escape(p.name) << "\" align=\"left\" bgcolor=\"" << color(p.type->name) << "\">"
+           << escape(p.name) << "</td>";
+      } else {
+        os << "<td></td>";
+      }
+      if (r < b.outputs().size()) {
+        const PortSpec& p = b.outputs()[r];
+        types.insert(p.type->name);
+        os << "<td port=\"o_" << escape(p.name) << "\" align=\"right\" bgcolor=\"" << color(p.type->name) << "\">"
+           << escape(p.name) << "</td>";
+      } else {
+        os << "<td></td>";
+      }
+      os << "</tr>";
+    }
+    for (const auto& spec : b.propertySpecs()) {
+      const PropertyValue v = b.propertyValue(spec.name());
+      if (v == spec.defaultValue()) continue;
+      os << "<tr><td colspan=\"2\" align=\"left\"><font point-size=\"8\">" << escape(spec.name()) << " = "
+         << escape(toString(v)) << "</font></td></tr>";
+    }
+    os << "</table>>];\n";
+  }
+  for (size_t i = 0; i < net.nodes().size(); ++i) {
+    const Net::Node& n = net.node(i);
+    for (size_t p = 0; p < n.input_links.size(); ++p) {
+      const Endpoint& l = n.input_links[p];
+      if (!l.valid()) continue;
+      const PortSpec& out = net.node(l.node).block->outputs()[l.port];
+      os << "  b" << l.node << ":o_" << out.name << ":e -> b" << i << ":i_" << n.block->inputs()[p].name
+         << ":w [color=\"" << color(out.type->name) << "\", penwidth=2];\n";
+    }
+    if (n.feedback) {
+      int score = net.findNode(n.feedback->score_block);
+      os << "  b" << score << ":o_" << n.feedback->score_port << " -> b" << i
+         << " [style=dashed, color=\"#555555\", constraint=false, label=\"feedback: " << escape(n.feedback->property)
+         << " (" << (n.feedback->maximize ? "max" : "min") << ")\"];\n";
+    }
+  }
+  // Legend: one swatch per data type used.
+  os << "  legend [label=<<table border=\"0\" cellspacing=\"2\"><tr><td><b>data types</b></td></tr>";
+  for (const auto& t : types) {
+    os << "<tr><td bgcolor=\"" << color(t) << "\">" << escape(t) << "</td></tr>";
+  }
+  os << "</table>>];\n}\n";
+  return os.str();
+}
+
+}  // namespace imagenets

@@ -1,0 +1,493 @@
+#include "imagenets/net.h"
+
+#include <algorithm>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include <boost/filesystem.hpp>
+#include <ros/package.h>
+#include <yaml-cpp/yaml.h>
+
+#include "imagenets/registry.h"
+#include <imagenets/FeedbackTrace.h>
+
+namespace imagenets {
+
+namespace {
+thread_local const NetSpec* current_spec = nullptr;
+}
+
+const NetSpec* LoadContext::current() { return current_spec; }
+LoadContext::Scope::Scope(const NetSpec& spec) : previous_(current_spec) { current_spec = &spec; }
+LoadContext::Scope::~Scope() { current_spec = previous_; }
+
+std::string SourceLocation::str() const {
+  if (line <= 0) return file;
+  return file + ":" + std::to_string(line);
+}
+
+namespace {
+std::string joinLines(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const auto& l : lines) out += (out.empty() ? "" : "\n") + l;
+  return out;
+}
+}  // namespace
+
+NetError::NetError(std::vector<std::string> errors) : std::runtime_error(joinLines(errors)), errors_(std::move(errors)) {}
+
+// ---------------------------------------------------------------------------------------------
+// Parsing
+
+namespace {
+
+struct Parser {
+  std::string origin;
+  std::vector<std::string> errors;
+
+  SourceLocation at(const YAML::Node& node) const {
+    return SourceLocation{origin, node.Mark().is_null() ? 0 : node.Mark().line + 1};
+  }
+  void error(const YAML::Node& node, const std::string& what) { errors.push_back(at(node).str() + ": " + what); }
+
+  static std::string text(const YAML::Node& node) {
+    if (node.IsScalar()) return node.Scalar();
+    YAML::Emitter out;
+    out << YAML::Flow << node;
+    return out.c_str();
+  }
+
+  bool splitEndpoint(const YAML::Node& node, const std::string& s, std::string& block, std::string& port) {
+    auto dot = s.find('.');
+    if (dot == std::string::npos || dot == 0 || dot + 1 == s.size() || s.find('.', dot + 1) != std::string::npos) {
+      error(node, "'" + s + "' is not of the form block.port");
+      return false;
+    }
+    block = s.substr(0, dot);
+    port = s.substr(dot + 1);
+    return true;
+  }
+
+  static std::string trim(const std::string& s) {
+    auto b = s.find_first_not_of(" \t");
+    auto e = s.find_last_not_of(" \t");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+  }
+
+  void parseLink(const YAML::Node& item, NetSpec& spec) {
+    std::string from, to;
+    if (item.IsScalar()) {
+      const std::string& s = item.Scalar();
+      auto arrow = s.find("->");
+      if (arrow == std::string::npos) {
+        error(item, "link '" + s + "' is not of the form 'block.port -> block.port'");
+        return;
+      }
+      from = trim(s.substr(0, arrow));
+      to = trim(s.substr(arrow + 2));
+    } else if (item.IsMap() && item["from"] && item["to"]) {
+      from = item["from"].as<std::string>();
+      to = item["to"].as<std::string>();
+    } else {
+      error(item, "a link is 'block.port -> block.port' or {from: block.port, to: block.port}");
+      return;
+    }
+    LinkSpec link;
+    link.loc = at(item);
+    if (splitEndpoint(item, from, link.from_block, link.from_port) &&
+        splitEndpoint(item, to, link.to_block, link.to_port)) {
+      spec.links.push_back(link);
+    }
+  }
+
+  void parseFeedback(const std::string& block, const YAML::Node& node, BlockSpec& b) {
+    const std::string where = "block '" + block + "': feedback: ";
+    if (!node.IsMap()) {
+      error(node, where + "expected a map with property, from/to/step (or values), score, goal");
+      return;
+    }
+    static const std::set<std::string> known{"property", "from", "to", "step", "values", "score", "goal", "search", "parallel"};
+    for (const auto& kv : node) {
+      if (!known.count(kv.first.Scalar())) error(kv.first, where + "unknown key '" + kv.first.Scalar() + "'");
+    }
+    FeedbackSpec f;
+    f.loc = at(node);
+    try {
+      if (!node["property"]) return error(node, where + "missing 'property'");
+      f.property = node["property"].as<std::string>();
+      if (!node["score"]) return error(node, where + "missing 'score' (block.port of a std_msgs/Float64)");
+      std::string score = node["score"].as<std::string>();
+      if (!splitEndpoint(node["score"], score, f.score_block, f.score_port)) return;
+      std::string goal = node["goal"] ? node["goal"].as<std::string>() : "maximize";
+      if (goal != "maximize" && goal != "minimize") {
+        return error(node["goal"], where + "goal '" + goal + "' is neither maximize nor minimize");
+      }
+      f.maximize = goal == "maximize";
+      f.search = node["search"] ? node["search"].as<std::string>() : "exhaustive";
+      if (f.search != "exhaustive" && f.search != "coarse_to_fine") {
+        return error(node["search"], where + "search '" + f.search + "' is neither exhaustive nor coarse_to_fine");
+      }
+      f.parallel = node["parallel"] ? node["parallel"].as<bool>() : true;
+      if (node["values"]) {
+        if (node["from"] || node["to"] || node["step"]) {
+          return error(node, where + "give either 'values' or 'from/to/step', not both");
+        }
+        f.values = node["values"].as<std::vector<double>>();
+        if (f.values.empty()) return error(node["values"], where + "'values' is empty");
+      } else {
+        if (!node["from"] || !node["to"]) return error(node, where + "missing 'from'/'to' (or 'values')");
+        double from = node["from"].as<double>(), to = node["to"].as<double>();
+        double step = node["step"] ? node["step"].as<double>() : 1.0;
+        if (!(step > 0)) return error(node["step"] ? node["step"] : node, where + "step " + text(node["step"]) + " must be > 0");
+        if (to < from) {
+          return error(node, where + "range from " + text(node["from"]) + " to " + text(node["to"]) + " is inverted");
+        }
+        // Count steps with a tolerance so 40..80 step 0.1 ends at 80, not 79.9.
+        size_t n = static_cast<size_t>(std::floor((to - from) / step + 1e-9)) + 1;
+        for (size_t i = 0; i < n; ++i) f.values.push_back(from + step * static_cast<double>(i));
+      }
+    } catch (const YAML::Exception& e) {
+      return error(node, where + "bad value: " + e.msg);
+    }
+    b.feedback = f;
+  }
+
+  void parseBlock(const YAML::Node& key, const YAML::Node& body, NetSpec& spec) {
+    BlockSpec b;
+    b.name = key.Scalar();
+    b.loc = at(key);
+    if (!body.IsMap()) return error(key, "block '" + b.name + "': expected a map with 'type'");
+    static const std::set<std::string> known{"type", "properties", "feedback", "doc"};
+    for (const auto& kv : body) {
+      if (!known.count(kv.first.Scalar())) {
+        error(kv.first, "block '" + b.name + "': unknown key '" + kv.first.Scalar() +
+                            "' (expected type, properties, feedback, doc)");
+      }
+    }
+    if (!body["type"] || !body["type"].IsScalar()) return error(key, "block '" + b.name + "': missing 'type'");
+    b.type = body["type"].Scalar();
+    if (const YAML::Node props = body["properties"]) {
+      if (!props.IsMap()) {
+        error(props, "block '" + b.name + "': 'properties' must be a map");
+      } else {
+        for (const auto& kv : props) b.properties.push_back(PropertySetting{kv.first.Scalar(), text(kv.second), at(kv.first)});
+      }
+    }
+    if (const YAML::Node fb = body["feedback"]) parseFeedback(b.name, fb, b);
+    spec.blocks.push_back(std::move(b));
+  }
+};
+
+}  // namespace
+
+NetSpec parseNetText(const std::string& yaml, const std::string& origin, const std::string& base_dir) {
+  Parser p{origin, {}};
+  NetSpec spec;
+  spec.origin = origin;
+  spec.base_dir = base_dir;
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml);
+  } catch (const YAML::ParserException& e) {
+    throw NetError({origin + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
+                    ": malformed YAML: " + e.msg});
+  }
+  if (!root.IsMap()) throw NetError({origin + ": a net is a YAML map with 'blocks' and 'links'"});
+  for (const auto& kv : root) {
+    const std::string key = kv.first.Scalar();
+    if (key != "blocks" && key != "links" && key != "doc") {
+      p.error(kv.first, "unknown key '" + key + "' (a net has blocks, links and doc)");
+    }
+  }
+  const YAML::Node blocks = root["blocks"];
+  if (!blocks || !blocks.IsMap() || blocks.size() == 0) {
+    throw NetError({origin + ": 'blocks' must be a non-empty map of block name to {type, properties}"});
+  }
+  for (const auto& kv : blocks) p.parseBlock(kv.first, kv.second, spec);
+  if (const YAML::Node links = root["links"]) {
+    if (!links.IsSequence()) p.error(links, "'links' must be a list of 'block.port -> block.port'");
+    else for (const auto& item : links) p.parseLink(item, spec);
+  }
+  if (!p.errors.empty()) throw NetError(p.errors);
+  return spec;
+}
+
+NetSpec parseNetFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw NetError({path + ": cannot read net file: " + std::strerror(errno)});
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string dir = boost::filesystem::absolute(path).parent_path().string();
+  return parseNetText(ss.str(), path, dir);
+}
+
+std::string resolvePath(const std::string& path, const std::string& base_dir) {
+  std::string out = path;
+  static const std::regex find_re(R"(\$\(find ([A-Za-z0-9_]+)\))");
+  std::smatch m;
+  while (std::regex_search(out, m, find_re)) {
+    std::string pkg_path = ros::package::getPath(m[1].str());
+    if (pkg_path.empty()) throw std::runtime_error("$(find " + m[1].str() + "): ROS package not found");
+    out = m.prefix().str() + pkg_path + m.suffix().str();
+  }
+  if (out.empty() || out[0] == '/' || base_dir.empty()) return out;
+  return (boost::filesystem::path(base_dir) / out).lexically_normal().string();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Building
+
+namespace {
+
+std::string describe(const BlockSpec& b) { return "block '" + b.name + "' (" + b.type + ")"; }
+
+std::string portList(const std::vector<PortSpec>& ports) {
+  if (ports.empty()) return "none";
+  std::string out;
+  for (const auto& p : ports) out += (out.empty() ? "" : ", ") + p.name + " [" + p.type->name + "]";
+  return out;
+}
+
+}  // namespace
+
+int Net::findNode(const std::string& name) const {
+  for (size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::unique_ptr<Net> Net::build(const NetSpec& spec) {
+  auto net = std::make_unique<Net>();
+  net->origin_ = spec.origin;
+  net->base_dir_ = spec.base_dir;
+  std::vector<std::string> errors;
+  LoadContext::Scope scope(spec);
+
+  // Blocks and their properties.
+  std::set<std::string> names;
+  for (const BlockSpec& b : spec.blocks) {
+    const std::string at = b.loc.str() + ": ";
+    if (b.name.empty() || b.name.find_first_of(". \t/") != std::string::npos) {
+      errors.push_back(at + "block name '" + b.name + "' may not contain '.', '/' or spaces");
+      continue;
+    }
+    if (!names.insert(b.name).second) {
+      errors.push_back(at + "block '" + b.name + "' defined twice");
+      continue;
+    }
+    const BlockInfo* info = BlockRegistry::instance().find(b.type);
+    if (!info) {
+      std::string msg = at + "block '" + b.name + "': unknown block type '" + b.type + "'";
+      auto near = BlockRegistry::instance().suggest(b.type);
+      if (!near.empty()) {
+        msg += "; did you mean ";
+        for (size_t i = 0; i < near.size(); ++i) msg += (i ? ", " : "") + std::string("'") + near[i] + "'";
+        msg += "?";
+      }
+      errors.push_back(msg);
+      continue;
+    }
+    Node node;
+    node.name = b.name;
+    node.loc = b.loc;
+    node.feedback = b.feedback;
+    node.block = BlockRegistry::instance().create(b.type);
+    bool ok = true;
+    for (const PropertySetting& s : b.properties) {
+      const PropertySpec* ps = node.block->findProperty(s.name);
+      if (!ps) {
+        std::string known;
+        for (const auto& p : node.block->propertySpecs()) known += (known.empty() ? "" : ", ") + p.name();
+        errors.push_back(s.loc.str() + ": " + describe(b) + ": unknown property '" + s.name +
+                         "' (known: " + (known.empty() ? "none" : known) + ")");
+        ok = false;
+        continue;
+      }
+      try {
+        PropertyValue v = ps->parse(s.text);
+        if (ps->isPath()) v = resolvePath(std::get<std::string>(v), spec.base_dir);
+        node.block->setProperty(s.name, v);
+      } catch (const std::exception& e) {
+        errors.push_back(s.loc.str() + ": " + describe(b) + ": property '" + s.name + "': " + e.what());
+        ok = false;
+      }
+    }
+    if (!ok) continue;
+    if (b.feedback) {
+      node.block->addOutput("feedback_trace", PortType::of<FeedbackTrace>(),
+                            "every (value, score) of the feedback sweep and the chosen value");
+    }
+    try {
+      node.block->configure();
+    } catch (const NetError& e) {
+      for (const auto& inner : e.errors()) errors.push_back(at + describe(b) + ": " + inner);
+      continue;
+    } catch (const std::exception& e) {
+      errors.push_back(at + describe(b) + ": " + e.what());
+      continue;
+    }
+    node.input_links.resize(node.block->inputs().size());
+    net->nodes_.push_back(std::move(node));
+  }
+
+  // Links, type-checked. A block that failed above is skipped silently: its error is reported.
+  for (const LinkSpec& l : spec.links) {
+    const std::string at = l.loc.str() + ": link " + l.from_block + "." + l.from_port + " -> " +
+                           l.to_block + "." + l.to_port + ": ";
+    int from = net->findNode(l.from_block), to = net->findNode(l.to_block);
+    bool from_known = from >= 0 || names.count(l.from_block), to_known = to >= 0 || names.count(l.to_block);
+    if (!from_known) errors.push_back(at + "no block named '" + l.from_block + "'");
+    if (!to_known) errors.push_back(at + "no block named '" + l.to_block + "'");
+    if (from < 0 || to < 0) continue;
+    const Block& src = *net->nodes_[from].block;
+    const Block& dst = *net->nodes_[to].block;
+    int out_port = src.outputIndex(l.from_port);
+    int in_port = dst.inputIndex(l.to_port);
+    if (out_port < 0) {
+      errors.push_back(at + "block '" + l.from_block + "' has no output port '" + l.from_port +
+                       "' (outputs: " + portList(src.outputs()) + ")");
+    }
+    if (in_port < 0) {
+      errors.push_back(at + "block '" + l.to_block + "' has no input port '" + l.to_port +
+                       "' (inputs: " + portList(dst.inputs()) + ")");
+    }
+    if (out_port < 0 || in_port < 0) continue;
+    const std::string& out_type = src.outputs()[out_port].type->name;
+    const std::string& in_type = dst.inputs()[in_port].type->name;
+    if (out_type != in_type) {
+      errors.push_back(at + "type mismatch: output is " + out_type + ", input is " + in_type);
+      continue;
+    }
+    Endpoint& slot = net->nodes_[to].input_links[in_port];
+    if (slot.valid()) {
+      errors.push_back(at + "input " + l.to_block + "." + l.to_port + " is already linked from " +
+                       net->nodes_[slot.node].name + "." + net->nodes_[slot.node].block->outputs()[slot.port].name);
+      continue;
+    }
+    slot = Endpoint{from, out_port};
+    auto& down = net->nodes_[from].downstream;
+    if (std::find(down.begin(), down.end(), to) == down.end()) down.push_back(to);
+  }
+
+  // Event flow needs an acyclic net (feedback is declared on a block, never as a link).
+  std::vector<int> indegree(net->nodes_.size(), 0);
+  for (const Node& n : net->nodes_) {
+    for (int d : n.downstream) ++indegree[d];
+  }
+  std::vector<int> ready;
+  for (size_t i = 0; i < indegree.size(); ++i) {
+    if (indegree[i] == 0) ready.push_back(static_cast<int>(i));
+  }
+  while (!ready.empty()) {
+    int n = ready.front();
+    ready.erase(ready.begin());
+    net->order_.push_back(n);
+    for (int d : net->nodes_[n].downstream) {
+      if (--indegree[d] == 0) ready.push_back(d);
+    }
+  }
+  if (net->order_.size() != net->nodes_.size()) {
+    std::string cycle;
+    for (size_t i = 0; i < indegree.size(); ++i) {
+      if (indegree[i] > 0) cycle += (cycle.empty() ? "" : ", ") + net->nodes_[i].name;
+    }
+    errors.push_back(spec.origin + ": the links form a cycle through blocks " + cycle +
+                     " (nets are acyclic; use feedback to tune a block from a downstream score)");
+  }
+
+  // Feedback declarations.
+  if (errors.empty()) {
+    for (size_t i = 0; i < net->nodes_.size(); ++i) {
+      const Node& n = net->nodes_[i];
+      if (!n.feedback) continue;
+      const FeedbackSpec& f = *n.feedback;
+      const std::string at = f.loc.str() + ": block '" + n.name + "': feedback: ";
+      const PropertySpec* ps = n.block->findProperty(f.property);
+      if (!ps) {
+        errors.push_back(at + "unknown property '" + f.property + "'");
+      } else if (!ps->numeric()) {
+        errors.push_back(at + "property '" + f.property + "' is " + kindName(ps->kind()) + ", not numeric");
+      } else {
+        for (double v : f.values) {
+          try {
+            ps->fromNumber(v);
+          } catch (const PropertyError& e) {
+            errors.push_back(at + "candidate for '" + f.property + "': " + e.what());
+            break;
+          }
+        }
+      }
+      int score = net->findNode(f.score_block);
+      if (score < 0) {
+        errors.push_back(at + "score block '" + f.score_block + "' does not exist");
+        continue;
+      }
+      const PortSpec* port = net->nodes_[score].block->findOutput(f.score_port);
+      if (!port) {
+        errors.push_back(at + "score block '" + f.score_block + "' has no output port '" + f.score_port + "'");
+        continue;
+      }
+      if (port->type->name != "std_msgs/Float64") {
+        errors.push_back(at + "score port " + f.score_block + "." + f.score_port + " is " + port->type->name +
+                         ", not std_msgs/Float64");
+        continue;
+      }
+      auto down = net->descendants(static_cast<int>(i));
+      if (score != static_cast<int>(i) && std::find(down.begin(), down.end(), score) == down.end()) {
+        errors.push_back(at + "score port " + f.score_block + "." + f.score_port + " is not downstream of block '" +
+                         n.name + "'");
+      }
+    }
+  }
+
+  if (!errors.empty()) throw NetError(errors);
+  return net;
+}
+
+std::unique_ptr<Net> Net::loadFile(const std::string& path) { return build(parseNetFile(path)); }
+
+Endpoint Net::resolveOutput(const std::string& block_port) const {
+  auto dot = block_port.find('.');
+  int n = findNode(block_port.substr(0, dot));
+  if (dot == std::string::npos || n < 0) throw NetError({origin_ + ": no block for output '" + block_port + "'"});
+  int p = nodes_[n].block->outputIndex(block_port.substr(dot + 1));
+  if (p < 0) {
+    throw NetError({origin_ + ": block '" + nodes_[n].name + "' has no output port '" + block_port.substr(dot + 1) +
+                    "' (outputs: " + portList(nodes_[n].block->outputs()) + ")"});
+  }
+  return Endpoint{n, p};
+}
+
+Endpoint Net::resolveInput(const std::string& block_port) const {
+  auto dot = block_port.find('.');
+  int n = findNode(block_port.substr(0, dot));
+  if (dot == std::string::npos || n < 0) throw NetError({origin_ + ": no block for input '" + block_port + "'"});
+  int p = nodes_[n].block->inputIndex(block_port.substr(dot + 1));
+  if (p < 0) {
+    throw NetError({origin_ + ": block '" + nodes_[n].name + "' has no input port '" + block_port.substr(dot + 1) +
+                    "' (inputs: " + portList(nodes_[n].block->inputs()) + ")"});
+  }
+  return Endpoint{n, p};
+}
+
+std::vector<int> Net::descendants(int from) const {
+  std::vector<bool> seen(nodes_.size(), false);
+  std::vector<int> stack{from}, out;
+  while (!stack.empty()) {
+    int n = stack.back();
+    stack.pop_back();
+    for (int d : nodes_[n].downstream) {
+      if (!seen[d]) {
+        seen[d] = true;
+        out.push_back(d);
+        stack.push_back(d);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace imagenets

@@ -1,0 +1,77 @@
+#include "imagenets/registry.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace imagenets {
+
+BlockRegistry& BlockRegistry::instance() {
+  static BlockRegistry registry;
+  return registry;
+}
+
+void BlockRegistry::add(BlockInfo info) {
+  // A library loaded twice (linked, then again by a plug-in loader) registers the same names.
+  if (find(info.type)) return;
+  infos_.push_back(std::make_unique<BlockInfo>(std::move(info)));
+}
+
+const BlockInfo* BlockRegistry::find(const std::string& type) const {
+  for (const auto& info : infos_) {
+    if (info->type == type) return info.get();
+  }
+  return nullptr;
+}
+
+std::vector<const BlockInfo*> BlockRegistry::all() const {
+  std::vector<const BlockInfo*> out;
+  for (const auto& info : infos_) out.push_back(info.get());
+  std::sort(out.begin(), out.end(), [](const BlockInfo* a, const BlockInfo* b) {
+    return std::tie(a->category, a->type) < std::tie(b->category, b->type);
+  });
+  return out;
+}
+
+std::unique_ptr<Block> BlockRegistry::create(const std::string& type) const {
+  const BlockInfo* info = find(type);
+  if (!info) throw std::runtime_error("unknown block type '" + type + "'");
+  std::unique_ptr<Block> block = info->create();
+  block->setInfo(info);
+  return block;
+}
+
+namespace {
+size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t above = row[j];
+      bool same = std::tolower(a[i - 1]) == std::tolower(b[j - 1]);
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+}  // namespace
+
+std::vector<std::string> BlockRegistry::suggest(const std::string& type, size_t max) const {
+  std::vector<std::pair<size_t, std::string>> scored;
+  for (const auto& info : infos_) {
+    // Compare with and without the "imagenets/" prefix, so "Treshold" finds "imagenets/Threshold".
+    std::string bare = info->type.substr(info->type.find('/') + 1);
+    scored.emplace_back(std::min(editDistance(type, info->type), editDistance(type, bare)), info->type);
+  }
+  std::sort(scored.begin(), scored.end());
+  std::vector<std::string> out;
+  for (const auto& s : scored) {
+    if (out.size() >= max || s.first > std::max<size_t>(3, type.size() / 2)) break;
+    out.push_back(s.second);
+  }
+  return out;
+}
+
+}  // namespace imagenets

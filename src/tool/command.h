@@ -1,0 +1,37 @@
+// The `imagenets` command line tool: each sub-command is one file in src/tool that registers
+// itself with IMAGENETS_TOOL_COMMAND.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace imagenets {
+namespace tool {
+
+using Args = std::vector<std::string>;
+struct Command {
+  std::string name;
+  std::string usage;    // "run NET [--set block.property=value ...] [--output-dir DIR]"
+  std::string summary;  // one line
+  std::function<int(const Args&)> run;  // returns the exit code
+};
+
+std::vector<Command>& commands();
+struct CommandRegistration {
+  explicit CommandRegistration(Command c) { commands().push_back(std::move(c)); }
+};
+
+// Thrown for bad command-line use; main prints it with the command's usage, exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Pops the value after a flag (`--output-dir DIR`); throws UsageError if missing.
+std::string flagValue(const Args& args, size_t& i);
+
+}  // namespace tool
+}  // namespace imagenets
+
+#define IMAGENETS_TOOL_COMMAND(id, ...) \
+  static ::imagenets::tool::CommandRegistration imagenets_tool_command_##id(::imagenets::tool::Command{__VA_ARGS__})

@@ -1,0 +1,48 @@
+// `imagenets graph NET -o FILE.svg`: draws the net with Graphviz (Debian's `graphviz`).
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "command.h"
+#include "imagenets/graph.h"
+
+namespace imagenets {
+namespace tool {
+namespace {
+
+int run(const Args& args) {
+  std::string net_path, out;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "-o" || args[i] == "--output") out = flagValue(args, i);
+    else if (net_path.empty()) net_path = args[i];
+    else throw UsageError("unexpected argument '" + args[i] + "'");
+  }
+  if (net_path.empty() || out.empty()) throw UsageError("expects a net file and -o FILE");
+  const std::string dot = toDot(*Net::loadFile(net_path));
+  const auto ext_pos = out.rfind('.');
+  const std::string format = ext_pos == std::string::npos ? "svg" : out.substr(ext_pos + 1);
+  if (format == "dot") {
+    std::ofstream(out) << dot;
+  } else {
+    const std::string tmp = out + ".tmp";
+    const std::string cmd = "dot -T" + format + " -o '" + tmp + "'";
+    FILE* pipe = popen(cmd.c_str(), "w");
+    if (!pipe) throw std::runtime_error("cannot run Graphviz 'dot' (apt-get install graphviz)");
+    fwrite(dot.data(), 1, dot.size(), pipe);
+    if (pclose(pipe) != 0) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error("Graphviz 'dot -T" + format + "' failed");
+    }
+    std::rename(tmp.c_str(), out.c_str());
+  }
+  std::cout << "wrote " << out << "\n";
+  return 0;
+}
+
+}  // namespace
+
+IMAGENETS_TOOL_COMMAND(graph, "graph", "graph NET -o FILE.svg|.png|.dot",
+                       "draw the net: blocks, ports coloured by data type, links, feedback", run);
+
+}  // namespace tool
+}  // namespace imagenets

@@ -1,0 +1,75 @@
+#include "output_writer.h"
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+#include <cv_bridge/cv_bridge.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/image_encodings.h>
+
+namespace imagenets {
+namespace tool {
+namespace {
+
+std::multimap<std::string, ExtraWriter>& extraWriters() {
+  static std::multimap<std::string, ExtraWriter> writers;
+  return writers;
+}
+
+void commit(const std::string& tmp, const std::string& path) {
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot write '" + path + "'");
+  }
+}
+
+std::string writeImage(const sensor_msgs::Image& msg, const std::string& path) {
+  namespace enc = sensor_msgs::image_encodings;
+  cv_bridge::CvImageConstPtr cv = cv_bridge::toCvCopy(msg);
+  cv::Mat out = cv->image;
+  if (msg.encoding == enc::RGB8) cv::cvtColor(out, out, cv::COLOR_RGB2BGR);
+  else if (msg.encoding == enc::RGBA8) cv::cvtColor(out, out, cv::COLOR_RGBA2BGRA);
+  else if (out.depth() == CV_32F || out.depth() == CV_64F) {
+    // Float images (disparity, depth): scale the finite range to 0..255 for viewing.
+    cv::Mat finite = out == out;  // NaN != NaN
+    double lo = 0, hi = 0;
+    cv::minMaxLoc(out, &lo, &hi, nullptr, nullptr, finite);
+    out.convertTo(out, CV_8U, hi > lo ? 255.0 / (hi - lo) : 1.0, hi > lo ? -lo * 255.0 / (hi - lo) : 0.0);
+  }
+  const std::string tmp = path + ".tmp.png";
+  if (!cv::imwrite(tmp, out)) throw std::runtime_error("cannot write '" + path + "'");
+  commit(tmp, path);
+  return path;
+}
+
+}  // namespace
+
+void addExtraWriter(const std::string& type, ExtraWriter writer) { extraWriters().emplace(type, std::move(writer)); }
+
+std::string writeValue(const Value& value, const std::string& dir, const std::string& stem) {
+  if (!value) return "";
+  const std::string base = dir + "/" + stem;
+  std::string written;
+  if (value.type->name == "sensor_msgs/Image") {
+    written = writeImage(*value.as<sensor_msgs::Image>(), base + ".png");
+  } else {
+    written = base + ".yaml";
+    const std::string tmp = written + ".tmp";
+    {
+      std::ofstream out(tmp);
+      out << "# " << value.type->name << "\n";
+      value.type->printYaml(out, value);
+      if (!out) throw std::runtime_error("cannot write '" + written + "'");
+    }
+    commit(tmp, written);
+  }
+  auto range = extraWriters().equal_range(value.type->name);
+  for (auto it = range.first; it != range.second; ++it) it->second(value, dir, stem);
+  return written;
+}
+
+}  // namespace tool
+}  // namespace imagenets

@@ -1,0 +1,76 @@
+// `imagenets run NET [--set block.property=value ...] [--output-dir DIR] [--threads N]`: runs a
+// net, writes every output port (images as PNG, the rest as YAML) and prints per-block timings.
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+
+#include <boost/filesystem.hpp>
+
+#include "command.h"
+#include "imagenets/executor.h"
+#include "output_writer.h"
+
+namespace imagenets {
+namespace tool {
+namespace {
+
+int run(const Args& args) {
+  std::string net_path, output_dir;
+  std::vector<std::string> sets;
+  ExecutorOptions options;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--set") sets.push_back(flagValue(args, i));
+    else if (args[i] == "--output-dir" || args[i] == "-o") output_dir = flagValue(args, i);
+    else if (args[i] == "--threads") options.threads = std::stoi(flagValue(args, i));
+    else if (!args[i].empty() && args[i][0] == '-') throw UsageError("unknown option '" + args[i] + "'");
+    else if (net_path.empty()) net_path = args[i];
+    else throw UsageError("unexpected argument '" + args[i] + "'");
+  }
+  if (net_path.empty()) throw UsageError("expects a net file");
+
+  Executor executor(Net::loadFile(net_path), options);
+  for (const auto& s : sets) {
+    const auto eq = s.find('='), dot = s.find('.');
+    if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
+      throw UsageError("--set '" + s + "' is not block.property=value");
+    }
+    executor.setPropertyText(s.substr(0, dot), s.substr(dot + 1, eq - dot - 1), s.substr(eq + 1));
+  }
+  const RunReport report = executor.run();
+
+  std::cout << "net " << net_path << ": " << report.ran.size() << " blocks ran, " << report.failed.size()
+            << " failed, " << report.not_run.size() << " not run (" << executor.threads() << " threads)\n";
+  std::cout << "  " << std::left << std::setw(24) << "block" << std::setw(10) << "status" << std::right
+            << std::setw(6) << "runs" << std::setw(12) << "last ms" << std::setw(12) << "mean ms" << "\n";
+  for (const auto& node : executor.net().nodes()) {
+    BlockStats s = executor.stats(node.name);
+    std::cout << "  " << std::left << std::setw(24) << node.name << std::setw(10) << statusName(s.status) << std::right
+              << std::setw(6) << s.runs << std::fixed << std::setprecision(3) << std::setw(12) << s.last_ms
+              << std::setw(12) << s.mean_ms << "\n";
+  }
+  for (const auto& f : report.failed) std::cout << "FAILED " << f << "\n";
+  for (const auto& n : report.not_run) std::cout << "not run: " << n << "\n";
+
+  if (!output_dir.empty()) {
+    boost::filesystem::create_directories(output_dir);
+    size_t written = 0;
+    for (const auto& node : executor.net().nodes()) {
+      for (const auto& port : node.block->outputs()) {
+        Value v = executor.output(node.name + "." + port.name);
+        if (!v) continue;
+        std::cout << "  wrote " << writeValue(v, output_dir, node.name + "." + port.name) << "\n";
+        ++written;
+      }
+    }
+    std::cout << written << " outputs written to " << output_dir << "\n";
+  }
+  return report.ok() ? 0 : 1;
+}
+
+}  // namespace
+
+IMAGENETS_TOOL_COMMAND(run, "run", "run NET [--set block.property=value ...] [--output-dir DIR] [--threads N]",
+                       "run a net; write its outputs (images as PNG, others as YAML); print timings", run);
+
+}  // namespace tool
+}  // namespace imagenets
