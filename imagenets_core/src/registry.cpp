@@ -1,5 +1,7 @@
 #include "imagenets/registry.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -10,10 +12,22 @@ BlockRegistry& BlockRegistry::instance() {
   return registry;
 }
 
-void BlockRegistry::add(BlockInfo info) {
+void BlockRegistry::add(BlockInfo info, const void* anchor) {
   // A library loaded twice (linked, then again by a plug-in loader) registers the same names.
   if (find(info.type)) return;
+  Dl_info where{};
+  if (anchor && dladdr(anchor, &where) && where.dli_fname) {
+    std::string file = where.dli_fname;
+    info.library = file.substr(file.find_last_of('/') + 1);
+  }
   infos_.push_back(std::make_unique<BlockInfo>(std::move(info)));
+}
+
+const BlockInfo* BlockRegistry::findByTypeId(const std::type_info& cpp_type) const {
+  for (const auto& info : infos_) {
+    if (info->cpp_typeid && *info->cpp_typeid == cpp_type) return info.get();
+  }
+  return nullptr;
 }
 
 const BlockInfo* BlockRegistry::find(const std::string& type) const {
