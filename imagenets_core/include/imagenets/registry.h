@@ -39,6 +39,10 @@ class BlockRegistry {
   std::vector<const BlockInfo*> all() const;  // sorted by category, then type
   // Creates a block with its info set; throws std::runtime_error for an unknown type.
   std::unique_ptr<Block> create(const std::string& type) const;
+  // The nodelet plug-in description (imagenets_plugins.xml): one <library> per installed library
+  // that registers blocks (libimagenets_core, libimagenets_blocks; test code and programs are
+  // left out). Printed by `imagenets blocks --plugin-xml`; a test checks the committed file.
+  std::string pluginXml() const;
   // Known types closest to an unknown name (edit distance), best first.
   std::vector<std::string> suggest(const std::string& type, size_t max = 3) const;
 
