@@ -205,7 +205,8 @@ TEST(BlockNodelets, PropertyChangeRerunsBlockAndDownstreamOnce) {
   EXPECT_EQ(stored, 7);
 
   // The same through the dynparam command line tool (the Python client of the protocol).
-  ASSERT_EQ(std::system("rosrun dynamic_reconfigure dynparam set /dyn_thr threshold 72"), 0);
+  // Debian's python3 first: dynparam runs on `env python3`, and a pyenv python lacks the ROS modules.
+  ASSERT_EQ(std::system("PATH=/usr/bin:$PATH rosrun dynamic_reconfigure dynparam set /dyn_thr threshold 72"), 0);
   ASSERT_TRUE(waitFor([&] { return nOutputs() == 3; }, 5.0));
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   EXPECT_EQ(status.runs("dyn_blur"), 2);
