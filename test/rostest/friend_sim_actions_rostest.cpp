@@ -28,6 +28,11 @@ class JointStates {
     std::lock_guard<std::mutex> lock(m_);
     return last_.header.stamp;
   }
+  // Waits for a message published after now (so it reflects what the servers just reported).
+  void waitFresh() {
+    const ros::Time now = ros::Time::now();
+    for (int i = 0; i < 500 && stamp() <= now; ++i) ros::WallDuration(0.01).sleep();
+  }
 
  private:
   void cb(const sensor_msgs::JointState& m) {
@@ -69,7 +74,7 @@ TEST_F(FriendSimActions, ArmGoalIsReachedAndReportedByJointStates) {
   const auto result = arm_.getResult();
   ASSERT_EQ(result->positions.size(), 7u);
   for (int i = 0; i < 7; ++i) EXPECT_NEAR(result->positions[i], target[i] * kDeg, 1e-9) << armJoint(i + 1);
-  ros::Duration(0.2).sleep();  // a few joint_states periods
+  states_.waitFresh();
   for (int i = 0; i < 7; ++i) EXPECT_NEAR(states_.position(armJoint(i + 1)), target[i] * kDeg, 1e-9) << armJoint(i + 1);
 }
 
@@ -77,7 +82,7 @@ TEST_F(FriendSimActions, HeadGoalIsReached) {
   head_.sendGoal(goal({-15, 40}));
   ASSERT_TRUE(head_.waitForResult(ros::Duration(20)));
   EXPECT_EQ(head_.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
-  ros::Duration(0.2).sleep();
+  states_.waitFresh();
   EXPECT_NEAR(states_.position("head_pan_joint"), -15 * kDeg, 1e-9);
   EXPECT_NEAR(states_.position("head_tilt_joint"), 40 * kDeg, 1e-9);
 }
@@ -115,6 +120,7 @@ TEST_F(FriendSimActions, NewGoalPreemptsAndCancelStops) {
   EXPECT_EQ(arm_.getState(), actionlib::SimpleClientGoalState::PREEMPTED);
   ASSERT_TRUE(other.waitForResult(ros::Duration(20)));
   EXPECT_EQ(other.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
+  states_.waitFresh();
   EXPECT_NEAR(states_.position(armJoint(1)), 10 * kDeg, 1e-9);
 
   // Cancel: the arm stops where it is and stays there.
@@ -126,7 +132,8 @@ TEST_F(FriendSimActions, NewGoalPreemptsAndCancelStops) {
   const double stopped = arm_.getResult()->positions[0];
   EXPECT_LT(stopped, 10 * kDeg - 1e-3);
   EXPECT_GT(stopped, -89 * kDeg);
-  ros::Duration(0.3).sleep();
+  ros::Duration(0.3).sleep();  // it must not drift on
+  states_.waitFresh();
   EXPECT_NEAR(states_.position(armJoint(1)), stopped, 1e-9);
 }
 
