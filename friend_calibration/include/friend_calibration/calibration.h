@@ -1,0 +1,135 @@
+// The FRIEND calibration (paper section 4): the pan-tilt head's fixed point ("PTH fixed point",
+// base -> head_link_0, invariant under pan and tilt) from the gripper marker seen by the stereo
+// camera. The functions read like the paper's Fig. 4.2 / 4.3 nets:
+//
+//   calibration pose -> gripperMarkerInRobot (arm forward kinematics + marker offset)
+//   left / right image -> robust marker detection (marker_measurement.h) -> markerInLeftCamera
+//   -> fuseStereoDetections -> leftCameraInRobot (invert) -> pthFixedPoint (head DH chain)
+//   N samples -> combineRedundantSamples (mean rotation, per-axis median translation)
+//
+// Beyond the paper: every raw sample is kept with the result, per-sample residuals and rejected
+// outliers are reported, and solveJointly() estimates the fixed point together with the marker
+// offset from samples taken at different poses (robot-world / hand-eye least squares), which
+// removes the bias a single pose inherits from the marker-offset and joint-offset errors.
+// Plain Eigen (no ROS) so the node, the tool, the study and the tests share it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "friend_hw_sim/robot_model.h"
+
+namespace friend_calibration {
+
+using friend_hw_sim::RobotModel;
+
+// One marker detection in one camera image (the robust detection's result).
+struct MarkerObservation {
+  bool found = false;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // T_camera_marker
+  double confidence = 0.0;
+  double threshold = 0.0;            // binarisation threshold the feedback chose
+  double reprojection_error = 0.0;   // RMS pixels
+  std::vector<Eigen::Vector2d> points;  // the 8 defined points (distorted pixels) when found
+  std::string reason;                // why not found
+};
+
+// One calibration sample: the raw measurements (kept, so a calibration can be re-solved without
+// the robot) and what the paper's chain computes from them.
+struct Sample {
+  // Raw.
+  std::vector<double> arm_q, head_q;  // joint_states (encoder readings) when the images were taken
+  MarkerObservation left, right;      // right: in the right camera's own frame
+  double stamp = 0.0;                 // image time, s
+  // Derived (solveSample).
+  bool valid = false;
+  std::string reason;                 // why invalid, or which fusion source was used
+  std::string fusion;                 // "both", "left", "right" or "none"
+  Eigen::Isometry3d marker_in_left = Eigen::Isometry3d::Identity();  // fused
+  Eigen::Isometry3d fixed_point = Eigen::Isometry3d::Identity();     // this sample's estimate
+};
+
+// ---- The paper's chain (Fig. 4.2) ----------------------------------------------------------
+
+// Base -> gripper marker from the arm's forward kinematics and the marker offset (TCP -> marker;
+// the nominal one from the robot description unless given).
+Eigen::Isometry3d gripperMarkerInRobot(const RobotModel& model, const std::vector<double>& arm_q);
+Eigen::Isometry3d gripperMarkerInRobot(const RobotModel& model, const std::vector<double>& arm_q,
+                                       const Eigen::Isometry3d& marker_offset);
+// The right camera's detection expressed in the left camera frame (stereo extrinsics).
+Eigen::Isometry3d markerInLeftCamera(const RobotModel& model, const Eigen::Isometry3d& marker_in_right);
+
+struct FusionLimits {
+  double max_position_difference = 0.005;  // m: left and right must agree within this...
+  double max_angle_difference = 0.0524;    // rad (3 deg) ...and this, else the sample is invalid
+};
+struct Fusion {
+  bool valid = false;
+  std::string source;  // "both", "left", "right", "none"
+  std::string reason;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+// Mean of both when both are valid and agree, the valid one when only one is, else invalid.
+Fusion fuseStereoDetections(const std::optional<Eigen::Isometry3d>& left,
+                            const std::optional<Eigen::Isometry3d>& right_in_left, const FusionLimits& limits);
+// Base -> left optical frame: marker in base composed with the inverted marker-in-camera pose.
+Eigen::Isometry3d leftCameraInRobot(const Eigen::Isometry3d& marker_in_robot, const Eigen::Isometry3d& marker_in_left);
+// Base -> head_link_0: the camera pose moved back through the head's DH chain at (pan, tilt).
+Eigen::Isometry3d pthFixedPoint(const RobotModel& model, const Eigen::Isometry3d& left_camera_in_robot,
+                                const std::vector<double>& head_q);
+// The nominal chain head_link_0 -> left optical frame at (pan, tilt).
+Eigen::Isometry3d headChain(const RobotModel& model, const std::vector<double>& head_q);
+
+// Runs the chain on one sample's raw data; sets valid / reason / fusion / marker_in_left /
+// fixed_point. `marker_offset`: TCP -> marker to use (nominal when not given).
+void solveSample(const RobotModel& model, Sample& sample, const FusionLimits& limits,
+                 const std::optional<Eigen::Isometry3d>& marker_offset = std::nullopt);
+
+// ---- Redundancy (Fig. 4.3) and the combined result ----------------------------------------
+
+struct CombineOptions {
+  // A sample whose frame is further than max(floor, k * robust sigma) from the robust centre
+  // (per-axis median translation, medoid rotation) is rejected as an outlier.
+  double outlier_translation_floor = 0.003;  // m
+  double outlier_rotation_floor = 0.0087;    // rad (0.5 deg)
+  double outlier_sigmas = 4.0;
+  int min_valid_samples = 1;                 // fewer valid (after rejection) -> failure
+};
+
+struct Result {
+  bool success = false;
+  std::string message;
+  std::string method;  // "paper" or "joint"
+  Eigen::Isometry3d fixed_point = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d marker_offset = Eigen::Isometry3d::Identity();  // TCP -> marker used / estimated
+  Eigen::Vector3d std_translation = Eigen::Vector3d::Zero();  // m, per axis, over the used samples
+  Eigen::Vector3d std_rotation = Eigen::Vector3d::Zero();     // rad, rotation vector per axis
+  std::vector<int> used, rejected;                            // sample indices
+  std::vector<std::string> rejection_reasons;                 // parallel to `rejected`
+  std::vector<double> residual_translation, residual_rotation;  // per sample (NaN when invalid)
+  std::vector<Sample> samples;
+  double compute_time = 0.0;  // s
+};
+
+// The paper's redundancy (4.2): the mean rotation of all sample frames and the per-axis median of
+// their translations, after rejecting invalid samples and outliers.
+Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions& options);
+
+// Beyond the paper: least squares over the fixed point X and the marker offset M such that for
+// every used sample  X * headChain(head_q) * marker_in_left * p  =  tcp(arm_q) * M * p  for the
+// marker's corners and centre p (a weak prior keeps M near its nominal value when the poses do not
+// vary enough to observe it). Starts from `paper` (which also decides the outliers).
+Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits);
+
+// Everything: solveSample on each sample, combine, and (method "joint") the joint solution.
+// Throws std::invalid_argument for an unknown method.
+Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std::string& method,
+                 const FusionLimits& limits, const CombineOptions& options);
+
+// Rotation angle between two frames (rad) and the distance between their origins (m).
+double angleBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+
+}  // namespace friend_calibration

@@ -1,0 +1,30 @@
+// Calibration files (YAML): the fixed point, its spread, and every raw sample (joint states and
+// both detections) so a calibration can be re-solved later without the robot (replay).
+// Written atomically (temporary file + rename); the previous file is kept beside it with its
+// time stamp (pth_fixed_point.20261122T041500Z.yaml).
+#pragma once
+
+#include <string>
+
+#include "friend_calibration/calibration.h"
+
+namespace friend_calibration {
+
+struct StoredCalibration {
+  std::string file;
+  std::string base_frame = "base_link";
+  std::string child_frame = "pth_fixed_point";
+  std::string created;  // UTC, ISO 8601
+  Result result;
+};
+
+// Writes `calibration` to `path` (creating its directory). Returns the path the previous file was
+// archived to ("" when there was none). Throws std::runtime_error naming the path on failure; the
+// old file is then untouched.
+std::string saveCalibration(const StoredCalibration& calibration, const std::string& path);
+// Throws std::runtime_error naming the file and key on a missing file or bad content.
+StoredCalibration loadCalibration(const std::string& path);
+// Current UTC time as 20261122T041500Z (file names) or 2026-11-22T04:15:00Z (iso = true).
+std::string utcStamp(bool iso);
+
+}  // namespace friend_calibration

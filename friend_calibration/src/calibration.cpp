@@ -1,0 +1,343 @@
+#include "friend_calibration/calibration.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "imagenets/blocks/frames.h"
+
+namespace friend_calibration {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string mm(double m) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2f mm", m * 1000);
+  return b;
+}
+std::string deg(double r) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3f deg", r * 180 / M_PI);
+  return b;
+}
+
+// Rotation vector (axis * angle) of a rotation matrix.
+Eigen::Vector3d logRotation(const Eigen::Matrix3d& r) {
+  const Eigen::AngleAxisd aa(r);
+  return aa.axis() * aa.angle();
+}
+Eigen::Matrix3d expRotation(const Eigen::Vector3d& v) {
+  const double a = v.norm();
+  if (a < 1e-15) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(a, v / a).toRotationMatrix();
+}
+
+// A frame perturbed by a 6-vector (translation, rotation vector), applied on the right.
+Eigen::Isometry3d perturb(const Eigen::Isometry3d& t, const Eigen::Matrix<double, 6, 1>& d) {
+  Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+  p.translation() = d.head<3>();
+  p.linear() = expRotation(d.tail<3>());
+  return t * p;
+}
+
+double sampleStd(const std::vector<double>& v) {
+  if (v.size() < 2) return 0.0;
+  const double mean = std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+  double s = 0;
+  for (double x : v) s += (x - mean) * (x - mean);
+  return std::sqrt(s / (v.size() - 1));
+}
+
+// Robust scale of residuals around 0 (1.4826 * median absolute value = sigma for a Gaussian).
+double robustSigma(std::vector<double> r) {
+  if (r.empty()) return 0.0;
+  return 1.4826 * imagenets::frames::median(std::move(r));
+}
+
+}  // namespace
+
+double angleBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return imagenets::frames::rotationAngle(Eigen::Quaterniond(a.rotation()), Eigen::Quaterniond(b.rotation()));
+}
+
+Eigen::Isometry3d gripperMarkerInRobot(const RobotModel& model, const std::vector<double>& arm_q) {
+  return model.marker(arm_q);
+}
+
+Eigen::Isometry3d gripperMarkerInRobot(const RobotModel& model, const std::vector<double>& arm_q,
+                                       const Eigen::Isometry3d& marker_offset) {
+  return model.tcp(arm_q) * marker_offset;
+}
+
+Eigen::Isometry3d markerInLeftCamera(const RobotModel& model, const Eigen::Isometry3d& marker_in_right) {
+  return model.leftToRight() * marker_in_right;
+}
+
+Fusion fuseStereoDetections(const std::optional<Eigen::Isometry3d>& left,
+                            const std::optional<Eigen::Isometry3d>& right_in_left, const FusionLimits& limits) {
+  imagenets::frames::FusionLimits l;
+  l.max_position_difference = limits.max_position_difference;
+  l.max_angle_difference = limits.max_angle_difference;
+  const auto f = imagenets::frames::fusePoses(left, right_in_left, l);
+  Fusion out;
+  out.valid = f.valid;
+  out.pose = f.pose;
+  using S = imagenets::frames::FusionResult::Source;
+  out.source = f.source == S::Both ? "both" : f.source == S::First ? "left" : f.source == S::Second ? "right" : "none";
+  out.reason = f.reason;
+  if (!left && !right_in_left) out.reason = "marker not found in either image";
+  return out;
+}
+
+Eigen::Isometry3d leftCameraInRobot(const Eigen::Isometry3d& marker_in_robot, const Eigen::Isometry3d& marker_in_left) {
+  return marker_in_robot * marker_in_left.inverse();
+}
+
+Eigen::Isometry3d headChain(const RobotModel& model, const std::vector<double>& head_q) {
+  return model.headBase().inverse() * model.leftCamera(head_q);
+}
+
+Eigen::Isometry3d pthFixedPoint(const RobotModel& model, const Eigen::Isometry3d& left_camera_in_robot,
+                                const std::vector<double>& head_q) {
+  return left_camera_in_robot * headChain(model, head_q).inverse();
+}
+
+void solveSample(const RobotModel& model, Sample& s, const FusionLimits& limits,
+                 const std::optional<Eigen::Isometry3d>& marker_offset) {
+  s.valid = false;
+  s.fusion = "none";
+  std::optional<Eigen::Isometry3d> left, right;
+  if (s.left.found) left = s.left.pose;
+  if (s.right.found) right = markerInLeftCamera(model, s.right.pose);
+  const Fusion f = fuseStereoDetections(left, right, limits);
+  s.fusion = f.source;
+  if (!f.valid) {
+    std::string why = f.reason;
+    if (!left && !right) {
+      why = "marker not found (left: " + (s.left.reason.empty() ? "no detection" : s.left.reason) +
+            "; right: " + (s.right.reason.empty() ? "no detection" : s.right.reason) + ")";
+    }
+    s.reason = why;
+    return;
+  }
+  s.marker_in_left = f.pose;
+  const Eigen::Isometry3d marker = marker_offset ? gripperMarkerInRobot(model, s.arm_q, *marker_offset)
+                                                 : gripperMarkerInRobot(model, s.arm_q);
+  s.fixed_point = pthFixedPoint(model, leftCameraInRobot(marker, s.marker_in_left), s.head_q);
+  s.valid = true;
+  s.reason = f.reason;
+}
+
+namespace {
+
+// Residuals of every sample's frame against `centre`; NaN for invalid samples.
+void residuals(const std::vector<Sample>& samples, const Eigen::Isometry3d& centre, Result& r) {
+  r.residual_translation.assign(samples.size(), kNaN);
+  r.residual_rotation.assign(samples.size(), kNaN);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (!samples[i].valid) continue;
+    r.residual_translation[i] = (samples[i].fixed_point.translation() - centre.translation()).norm();
+    r.residual_rotation[i] = angleBetween(samples[i].fixed_point, centre);
+  }
+}
+
+// Mean rotation + per-axis median translation of the given samples (the paper's combination),
+// and the per-axis spread of those samples.
+void combineUsed(const std::vector<Sample>& samples, Result& r) {
+  std::vector<Eigen::Quaterniond> q;
+  std::vector<Eigen::Vector3d> t;
+  for (int i : r.used) {
+    q.emplace_back(samples[i].fixed_point.rotation());
+    t.push_back(samples[i].fixed_point.translation());
+  }
+  r.fixed_point = Eigen::Isometry3d::Identity();
+  r.fixed_point.linear() = imagenets::frames::meanRotation(q).toRotationMatrix();
+  r.fixed_point.translation() = imagenets::frames::medianTranslation(t);
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> tv, rv;
+    for (int i : r.used) {
+      tv.push_back(samples[i].fixed_point.translation()[axis]);
+      rv.push_back(logRotation(r.fixed_point.rotation().transpose() * samples[i].fixed_point.rotation())[axis]);
+    }
+    r.std_translation[axis] = sampleStd(tv);
+    r.std_rotation[axis] = sampleStd(rv);
+  }
+}
+
+}  // namespace
+
+Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions& options) {
+  Result r;
+  r.method = "paper";
+  std::vector<int> valid;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i].valid) {
+      valid.push_back(static_cast<int>(i));
+    } else {
+      r.rejected.push_back(static_cast<int>(i));
+      r.rejection_reasons.push_back(samples[i].reason.empty() ? "invalid" : samples[i].reason);
+    }
+  }
+  if (valid.empty()) {
+    r.samples = std::move(samples);
+    r.message = "no valid sample";
+    if (!r.rejection_reasons.empty()) r.message += ": sample 0: " + r.rejection_reasons.front();
+    residuals(r.samples, Eigen::Isometry3d::Identity(), r);
+    return r;
+  }
+  // Robust centre: per-axis median translation and the medoid rotation (the sample rotation with
+  // the smallest summed angle to the others): an outlier cannot drag either.
+  std::vector<Eigen::Vector3d> t;
+  for (int i : valid) t.push_back(samples[i].fixed_point.translation());
+  Eigen::Isometry3d centre = Eigen::Isometry3d::Identity();
+  centre.translation() = imagenets::frames::medianTranslation(t);
+  double best = std::numeric_limits<double>::infinity();
+  for (int i : valid) {
+    double sum = 0;
+    for (int j : valid) sum += angleBetween(samples[i].fixed_point, samples[j].fixed_point);
+    if (sum < best) {
+      best = sum;
+      centre.linear() = samples[i].fixed_point.rotation();
+    }
+  }
+  std::vector<double> dt, dr;
+  for (int i : valid) {
+    dt.push_back((samples[i].fixed_point.translation() - centre.translation()).norm());
+    dr.push_back(angleBetween(samples[i].fixed_point, centre));
+  }
+  const double limit_t = std::max(options.outlier_translation_floor, options.outlier_sigmas * robustSigma(dt));
+  const double limit_r = std::max(options.outlier_rotation_floor, options.outlier_sigmas * robustSigma(dr));
+  for (size_t k = 0; k < valid.size(); ++k) {
+    if (dt[k] > limit_t || dr[k] > limit_r) {
+      r.rejected.push_back(valid[k]);
+      r.rejection_reasons.push_back("outlier: " + mm(dt[k]) + " / " + deg(dr[k]) + " from the robust centre (limits " +
+                                    mm(limit_t) + " / " + deg(limit_r) + ")");
+    } else {
+      r.used.push_back(valid[k]);
+    }
+  }
+  if (static_cast<int>(r.used.size()) < std::max(1, options.min_valid_samples)) {
+    r.samples = std::move(samples);
+    r.message = "too few valid samples: " + std::to_string(r.used.size()) + " of " + std::to_string(r.samples.size()) +
+                " (need " + std::to_string(std::max(1, options.min_valid_samples)) + ")";
+    residuals(r.samples, centre, r);
+    return r;
+  }
+  combineUsed(samples, r);
+  r.samples = std::move(samples);
+  residuals(r.samples, r.fixed_point, r);
+  r.success = true;
+  r.message = "calibrated from " + std::to_string(r.used.size()) + " of " + std::to_string(r.samples.size()) +
+              " samples (" + std::to_string(r.rejected.size()) + " rejected)";
+  return r;
+}
+
+Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits) {
+  Result r = paper;
+  r.method = "joint";
+  if (!paper.success) return r;
+  const Eigen::Isometry3d m_nominal = model.description().marker.pose;
+  // Corner and centre points of the marker (its frame), where the residuals are measured.
+  const double h = model.description().marker_size / 2;
+  const std::vector<Eigen::Vector3d> points{{0, 0, 0}, {-h, h, 0}, {h, h, 0}, {h, -h, 0}, {-h, -h, 0}};
+  const double sigma_point = 0.001;       // m: expected measurement noise of a marker point
+  const double prior_translation = 0.03;  // m: weak prior on the marker offset (see below)
+  const double prior_rotation = 0.175;    // rad (10 deg): weak, only for poses that barely vary
+
+  struct Obs {
+    Eigen::Isometry3d chain_cam_marker;  // headChain * marker_in_left (head_link_0 -> marker)
+    Eigen::Isometry3d tcp;
+  };
+  std::vector<Obs> obs;
+  for (int i : paper.used) {
+    const Sample& s = paper.samples[i];
+    obs.push_back({headChain(model, s.head_q) * s.marker_in_left, model.tcp(s.arm_q)});
+  }
+  const int n_res = static_cast<int>(obs.size() * points.size() * 3 + 6);
+  auto residual = [&](const Eigen::Isometry3d& x, const Eigen::Isometry3d& m) {
+    Eigen::VectorXd e(n_res);
+    int k = 0;
+    for (const Obs& o : obs) {
+      const Eigen::Isometry3d seen = x * o.chain_cam_marker, kin = o.tcp * m;
+      for (const auto& p : points) {
+        e.segment<3>(k) = (seen * p - kin * p) / sigma_point;
+        k += 3;
+      }
+    }
+    const Eigen::Isometry3d dm = m_nominal.inverse() * m;
+    e.segment<3>(k) = dm.translation() / prior_translation;
+    e.segment<3>(k + 3) = logRotation(dm.rotation()) / prior_rotation;
+    return e;
+  };
+  Eigen::Isometry3d x = paper.fixed_point, m = m_nominal;
+  double cost = residual(x, m).squaredNorm();
+  double lambda = 1e-3;
+  for (int iter = 0; iter < 30; ++iter) {
+    const Eigen::VectorXd e0 = residual(x, m);
+    Eigen::MatrixXd j(n_res, 12);
+    const double step = 1e-6;
+    for (int c = 0; c < 12; ++c) {
+      Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Zero();
+      d[c % 6] = step;
+      const Eigen::VectorXd e1 = c < 6 ? residual(perturb(x, d), m) : residual(x, perturb(m, d));
+      j.col(c) = (e1 - e0) / step;
+    }
+    const Eigen::MatrixXd jtj = j.transpose() * j;
+    const Eigen::VectorXd g = j.transpose() * e0;
+    bool improved = false;
+    for (int tries = 0; tries < 10 && !improved; ++tries) {
+      Eigen::MatrixXd a = jtj;
+      a.diagonal() += lambda * jtj.diagonal().cwiseMax(1e-9);
+      const Eigen::VectorXd delta = -a.ldlt().solve(g);
+      const Eigen::Isometry3d x1 = perturb(x, delta.head<6>()), m1 = perturb(m, delta.tail<6>());
+      const double c1 = residual(x1, m1).squaredNorm();
+      if (c1 < cost) {
+        const double gain = cost - c1;
+        x = x1;
+        m = m1;
+        cost = c1;
+        lambda = std::max(1e-9, lambda / 3);
+        improved = true;
+        if (gain < 1e-10 * std::max(1.0, cost)) iter = 1000;
+      } else {
+        lambda *= 10;
+      }
+    }
+    if (!improved) break;
+  }
+  x.linear() = Eigen::Quaterniond(x.rotation()).normalized().toRotationMatrix();
+  r.fixed_point = x;
+  r.marker_offset = m;
+  // Per-sample frames with the estimated marker offset: their spread and residuals.
+  for (int i : r.used) solveSample(model, r.samples[i], limits, m);
+  Result spread = r;
+  combineUsed(r.samples, spread);
+  r.std_translation = spread.std_translation;
+  r.std_rotation = spread.std_rotation;
+  residuals(r.samples, r.fixed_point, r);
+  r.message += "; joint fixed point + marker offset least squares (marker offset moved " +
+               mm((m_nominal.inverse() * m).translation().norm()) + " / " + deg(angleBetween(m_nominal, m)) + ")";
+  return r;
+}
+
+Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std::string& method,
+                 const FusionLimits& limits, const CombineOptions& options) {
+  if (method != "paper" && method != "joint") {
+    throw std::invalid_argument("unknown calibration method '" + method + "' (expected 'paper' or 'joint')");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  for (auto& s : samples) solveSample(model, s, limits);
+  Result r = combineRedundantSamples(std::move(samples), options);
+  r.marker_offset = model.description().marker.pose;
+  if (method == "joint") r = solveJointly(model, r, limits);
+  r.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace friend_calibration

@@ -1,0 +1,284 @@
+#include "friend_calibration/storage.h"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+#include <unistd.h>
+#include <yaml-cpp/yaml.h>
+
+namespace friend_calibration {
+namespace fs = std::filesystem;
+namespace {
+
+void emitFrame(YAML::Emitter& out, const Eigen::Isometry3d& t) {
+  const Eigen::Quaterniond q(t.rotation());
+  const Eigen::Vector3d rpy = friend_hw_sim::rpyOf(t.rotation()) * 180.0 / M_PI;
+  out << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "xyz" << YAML::Value << YAML::Flow << YAML::BeginSeq << t.translation().x()
+      << t.translation().y() << t.translation().z() << YAML::EndSeq;
+  out << YAML::Key << "quaternion_xyzw" << YAML::Value << YAML::Flow << YAML::BeginSeq << q.x() << q.y() << q.z()
+      << q.w() << YAML::EndSeq;
+  out << YAML::Key << "rpy_deg" << YAML::Value << YAML::Flow << YAML::BeginSeq << rpy.x() << rpy.y() << rpy.z()
+      << YAML::EndSeq;
+  out << YAML::EndMap;
+}
+
+void emitVector(YAML::Emitter& out, const Eigen::Vector3d& v) {
+  out << YAML::Flow << YAML::BeginSeq << v.x() << v.y() << v.z() << YAML::EndSeq;
+}
+
+template <class T>
+void emitList(YAML::Emitter& out, const std::vector<T>& v) {
+  out << YAML::Flow << YAML::BeginSeq;
+  for (const auto& x : v) out << x;
+  out << YAML::EndSeq;
+}
+
+void emitObservation(YAML::Emitter& out, const MarkerObservation& o) {
+  out << YAML::BeginMap;
+  out << YAML::Key << "found" << YAML::Value << o.found;
+  if (o.found) {
+    out << YAML::Key << "pose" << YAML::Value;
+    emitFrame(out, o.pose);
+    out << YAML::Key << "confidence" << YAML::Value << o.confidence;
+    out << YAML::Key << "threshold" << YAML::Value << o.threshold;
+    out << YAML::Key << "reprojection_error" << YAML::Value << o.reprojection_error;
+    out << YAML::Key << "points" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (const auto& p : o.points) out << YAML::Flow << YAML::BeginSeq << p.x() << p.y() << YAML::EndSeq;
+    out << YAML::EndSeq;
+  } else {
+    out << YAML::Key << "reason" << YAML::Value << o.reason;
+  }
+  out << YAML::EndMap;
+}
+
+// --- reading ---
+struct Reader {
+  std::string file;
+  YAML::Node get(const YAML::Node& n, const std::string& key, const std::string& where) const {
+    const YAML::Node v = n[key];
+    if (!v) throw std::runtime_error("calibration file '" + file + "': missing key '" + where + key + "'");
+    return v;
+  }
+  std::vector<double> numbers(const YAML::Node& n, const std::string& key, const std::string& where, size_t count) const {
+    const YAML::Node v = get(n, key, where);
+    std::vector<double> out;
+    try {
+      out = v.as<std::vector<double>>();
+    } catch (const YAML::Exception&) {
+      throw std::runtime_error("calibration file '" + file + "': '" + where + key + "' is not a list of numbers");
+    }
+    if (count && out.size() != count) {
+      throw std::runtime_error("calibration file '" + file + "': '" + where + key + "' has " +
+                               std::to_string(out.size()) + " values, expected " + std::to_string(count));
+    }
+    for (double x : out) {
+      if (!std::isfinite(x)) throw std::runtime_error("calibration file '" + file + "': '" + where + key + "' is not finite");
+    }
+    return out;
+  }
+  Eigen::Isometry3d frame(const YAML::Node& n, const std::string& key, const std::string& where) const {
+    const YAML::Node f = get(n, key, where);
+    const auto xyz = numbers(f, "xyz", where + key + ".", 3);
+    const auto q = numbers(f, "quaternion_xyzw", where + key + ".", 4);
+    const Eigen::Quaterniond quat(q[3], q[0], q[1], q[2]);
+    if (std::abs(quat.norm() - 1.0) > 1e-3) {
+      throw std::runtime_error("calibration file '" + file + "': '" + where + key + ".quaternion_xyzw' is not a unit quaternion");
+    }
+    Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+    t.linear() = quat.normalized().toRotationMatrix();
+    t.translation() = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+    return t;
+  }
+  MarkerObservation observation(const YAML::Node& n, const std::string& key, const std::string& where) const {
+    const YAML::Node o = get(n, key, where);
+    const std::string w = where + key + ".";
+    MarkerObservation obs;
+    obs.found = get(o, "found", w).as<bool>();
+    if (obs.found) {
+      obs.pose = frame(o, "pose", w);
+      obs.confidence = get(o, "confidence", w).as<double>();
+      obs.threshold = get(o, "threshold", w).as<double>();
+      obs.reprojection_error = get(o, "reprojection_error", w).as<double>();
+      if (o["points"]) {
+        for (const auto& p : o["points"]) {
+          const auto v = p.as<std::vector<double>>();
+          if (v.size() != 2) throw std::runtime_error("calibration file '" + file + "': '" + w + "points' needs [x, y] pairs");
+          obs.points.emplace_back(v[0], v[1]);
+        }
+      }
+    } else if (o["reason"]) {
+      obs.reason = o["reason"].as<std::string>();
+    }
+    return obs;
+  }
+};
+
+}  // namespace
+
+std::string utcStamp(bool iso) {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char b[40];
+  std::strftime(b, sizeof b, iso ? "%Y-%m-%dT%H:%M:%SZ" : "%Y%m%dT%H%M%SZ", &tm);
+  return b;
+}
+
+std::string saveCalibration(const StoredCalibration& c, const std::string& path) {
+  const Result& r = c.result;
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << YAML::Comment("FRIEND pan-tilt head fixed point calibration (imagenets friend_calibration)");
+  out << YAML::BeginMap;
+  out << YAML::Key << "created" << YAML::Value << (c.created.empty() ? utcStamp(true) : c.created);
+  out << YAML::Key << "base_frame" << YAML::Value << c.base_frame;
+  out << YAML::Key << "child_frame" << YAML::Value << c.child_frame;
+  out << YAML::Key << "method" << YAML::Value << r.method;
+  out << YAML::Key << "message" << YAML::Value << r.message;
+  out << YAML::Key << "fixed_point" << YAML::Value;
+  emitFrame(out, r.fixed_point);
+  out << YAML::Key << "marker_offset" << YAML::Value;
+  emitFrame(out, r.marker_offset);
+  out << YAML::Key << "std_dev_translation" << YAML::Value;
+  emitVector(out, r.std_translation);
+  out << YAML::Key << "std_dev_rotation" << YAML::Value;
+  emitVector(out, r.std_rotation);
+  out << YAML::Key << "compute_time" << YAML::Value << r.compute_time;
+  out << YAML::Key << "used" << YAML::Value;
+  emitList(out, r.used);
+  out << YAML::Key << "rejected" << YAML::Value << YAML::BeginSeq;
+  for (size_t i = 0; i < r.rejected.size(); ++i) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "sample" << YAML::Value << r.rejected[i] << YAML::Key
+        << "reason" << YAML::Value << (i < r.rejection_reasons.size() ? r.rejection_reasons[i] : "") << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "samples" << YAML::Value << YAML::BeginSeq;
+  for (size_t i = 0; i < r.samples.size(); ++i) {
+    const Sample& s = r.samples[i];
+    out << YAML::BeginMap;
+    out << YAML::Key << "index" << YAML::Value << i;
+    out << YAML::Key << "stamp" << YAML::Value << s.stamp;
+    out << YAML::Key << "arm_q" << YAML::Value;
+    emitList(out, s.arm_q);
+    out << YAML::Key << "head_q" << YAML::Value;
+    emitList(out, s.head_q);
+    out << YAML::Key << "left" << YAML::Value;
+    emitObservation(out, s.left);
+    out << YAML::Key << "right" << YAML::Value;
+    emitObservation(out, s.right);
+    out << YAML::Key << "valid" << YAML::Value << s.valid;
+    out << YAML::Key << "fusion" << YAML::Value << s.fusion;
+    out << YAML::Key << "reason" << YAML::Value << s.reason;
+    if (s.valid) {
+      out << YAML::Key << "fixed_point" << YAML::Value;
+      emitFrame(out, s.fixed_point);
+    }
+    if (i < r.residual_translation.size() && std::isfinite(r.residual_translation[i])) {
+      out << YAML::Key << "residual_translation" << YAML::Value << r.residual_translation[i];
+      out << YAML::Key << "residual_rotation" << YAML::Value << r.residual_rotation[i];
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::EndMap;
+  if (!out.good()) throw std::runtime_error("cannot write calibration '" + path + "': " + out.GetLastError());
+
+  const fs::path target(path);
+  std::error_code ec;
+  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
+  if (ec) throw std::runtime_error("cannot create the directory of '" + path + "': " + ec.message());
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream f(tmp, std::ios::trunc);
+    f << out.c_str() << "\n";
+    f.flush();
+    if (!f) {
+      fs::remove(tmp, ec);
+      throw std::runtime_error("cannot write calibration '" + tmp + "'");
+    }
+  }
+  std::string archived;
+  if (fs::exists(target)) {
+    // Keep the previous calibration under its own time stamp (never overwrite an archive).
+    const std::string stem = target.stem().string();
+    std::string base = (target.parent_path() / (stem + "." + utcStamp(false))).string();
+    archived = base + ".yaml";
+    for (int k = 1; fs::exists(archived); ++k) archived = base + "_" + std::to_string(k) + ".yaml";
+    fs::copy_file(target, archived, ec);
+    if (ec) {
+      fs::remove(tmp, ec);
+      throw std::runtime_error("cannot archive the previous calibration to '" + archived + "'");
+    }
+  }
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot move the new calibration into place at '" + path + "': " + ec.message());
+  }
+  return archived;
+}
+
+StoredCalibration loadCalibration(const std::string& path) {
+  StoredCalibration c;
+  c.file = path;
+  Reader rd{path};
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw std::runtime_error("calibration file '" + path + "' cannot be read");
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error("calibration file '" + path + "': " + e.what());
+  }
+  try {
+    if (root["created"]) c.created = root["created"].as<std::string>();
+    if (root["base_frame"]) c.base_frame = root["base_frame"].as<std::string>();
+    if (root["child_frame"]) c.child_frame = root["child_frame"].as<std::string>();
+    Result& r = c.result;
+    r.success = true;
+    r.method = rd.get(root, "method", "").as<std::string>();
+    if (root["message"]) r.message = root["message"].as<std::string>();
+    r.fixed_point = rd.frame(root, "fixed_point", "");
+    if (root["marker_offset"]) r.marker_offset = rd.frame(root, "marker_offset", "");
+    auto st = rd.numbers(root, "std_dev_translation", "", 3), sr = rd.numbers(root, "std_dev_rotation", "", 3);
+    r.std_translation = Eigen::Vector3d(st[0], st[1], st[2]);
+    r.std_rotation = Eigen::Vector3d(sr[0], sr[1], sr[2]);
+    if (root["compute_time"]) r.compute_time = root["compute_time"].as<double>();
+    if (root["used"]) r.used = root["used"].as<std::vector<int>>();
+    for (const auto& rej : root["rejected"]) {
+      r.rejected.push_back(rej["sample"].as<int>());
+      r.rejection_reasons.push_back(rej["reason"] ? rej["reason"].as<std::string>() : "");
+    }
+    const YAML::Node samples = root["samples"];
+    for (size_t i = 0; samples && i < samples.size(); ++i) {
+      const std::string w = "samples[" + std::to_string(i) + "].";
+      const YAML::Node n = samples[i];
+      Sample s;
+      s.stamp = n["stamp"] ? n["stamp"].as<double>() : 0.0;
+      s.arm_q = rd.numbers(n, "arm_q", w, 0);
+      s.head_q = rd.numbers(n, "head_q", w, 0);
+      s.left = rd.observation(n, "left", w);
+      s.right = rd.observation(n, "right", w);
+      s.valid = n["valid"] && n["valid"].as<bool>();
+      if (n["fusion"]) s.fusion = n["fusion"].as<std::string>();
+      if (n["reason"]) s.reason = n["reason"].as<std::string>();
+      if (s.valid && n["fixed_point"]) s.fixed_point = rd.frame(n, "fixed_point", w);
+      r.residual_translation.push_back(n["residual_translation"] ? n["residual_translation"].as<double>()
+                                                                 : std::numeric_limits<double>::quiet_NaN());
+      r.residual_rotation.push_back(n["residual_rotation"] ? n["residual_rotation"].as<double>()
+                                                           : std::numeric_limits<double>::quiet_NaN());
+      r.samples.push_back(std::move(s));
+    }
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error("calibration file '" + path + "': " + e.what());
+  }
+  return c;
+}
+
+}  // namespace friend_calibration

@@ -1,0 +1,61 @@
+// `imagenets calibrate`: triggers the running friend_calibration node, prints the fixed point and,
+// against the simulator, its error against the true one.
+#include <cstdio>
+#include <iostream>
+
+#include "calibration_client.h"
+#include "command.h"
+#include "friend_hw_sim/robot_model.h"
+
+namespace imagenets {
+namespace tool {
+namespace {
+
+int calibrate(const Args& args) {
+  int redundancy = 5;
+  std::string method;
+  double timeout = 30;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--redundancy") {
+      redundancy = std::stoi(flagValue(args, i));
+    } else if (args[i] == "--method") {
+      method = flagValue(args, i);
+    } else if (args[i] == "--wait") {
+      timeout = std::stod(flagValue(args, i));
+    } else if (args[i].rfind("__", 0) != 0) {
+      throw UsageError("unknown argument '" + args[i] + "'");
+    }
+  }
+  CalibrationClient client("imagenets_calibrate", timeout);
+  const CalibrationRun run = client.calibrate(redundancy, method);
+  const auto& r = run.response;
+  std::printf("%s: %s\n", r.success ? "calibrated" : "FAILED", r.message.c_str());
+  if (!r.success) return 1;
+  const auto& t = r.fixed_point.transform.translation;
+  const Eigen::Vector3d rpy = friend_hw_sim::rpyOf(run.fixed_point.rotation()) * 180 / M_PI;
+  std::printf("fixed point %s -> %s: xyz [%.4f %.4f %.4f] m, rpy [%.3f %.3f %.3f] deg\n",
+              r.fixed_point.header.frame_id.c_str(), r.fixed_point.child_frame_id.c_str(), t.x, t.y, t.z, rpy.x(),
+              rpy.y(), rpy.z());
+  std::printf("spread (std dev) x y z: %.3f %.3f %.3f mm, rotation %.4f %.4f %.4f deg; samples used %d, rejected %d\n",
+              r.std_dev_translation.x * 1000, r.std_dev_translation.y * 1000, r.std_dev_translation.z * 1000,
+              r.std_dev_rotation.x * 180 / M_PI, r.std_dev_rotation.y * 180 / M_PI, r.std_dev_rotation.z * 180 / M_PI,
+              r.samples_used, r.samples_rejected);
+  std::printf("time: %.3f s compute, %.2f s with motion\n", r.compute_time, r.total_time);
+  if (run.have_truth) {
+    std::printf("error against the simulator's true head mount: %.3f mm, %.4f deg\n", run.error_mm, run.error_deg);
+    std::printf("error against the effective fixed point (true mount with the pan encoder's zero offset, which no "
+                "calibration of this frame can separate): %.3f mm, %.4f deg\n",
+                run.effective_error_mm, run.effective_error_deg);
+  }
+  std::printf("calibration file: %s\n", r.file.c_str());
+  return 0;
+}
+
+}  // namespace
+
+IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--method paper|joint] [--wait S]",
+                       "trigger the running friend_calibration node; print the fixed point (and its error in simulation)",
+                       calibrate);
+
+}  // namespace tool
+}  // namespace imagenets

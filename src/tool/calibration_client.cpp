@@ -1,0 +1,106 @@
+#include "calibration_client.h"
+
+#include <chrono>
+#include <mutex>
+#include <stdexcept>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+
+#include "friend_calibration/calibration.h"
+#include "imagenets/blocks/frames.h"
+
+namespace imagenets {
+namespace tool {
+
+struct CalibrationClient::Impl {
+  std::unique_ptr<ros::NodeHandle> nh;
+  std::unique_ptr<ros::AsyncSpinner> spinner;
+  ros::Subscriber head_base_sub, left_sub, joints_sub;
+  std::mutex m;
+  geometry_msgs::TransformStampedConstPtr head_base, left;
+  sensor_msgs::JointStateConstPtr joints;
+  std::unique_ptr<friend_hw_sim::RobotModel> nominal;
+};
+
+CalibrationClient::CalibrationClient(const std::string& name, double timeout) : impl_(new Impl) {
+  if (!ros::isInitialized()) ros::init(ros::M_string(), name, ros::init_options::AnonymousName | ros::init_options::NoSigintHandler);
+  impl_->nh = std::make_unique<ros::NodeHandle>();
+  impl_->spinner = std::make_unique<ros::AsyncSpinner>(1);
+  impl_->spinner->start();
+  Impl* p = impl_.get();
+  p->head_base_sub = p->nh->subscribe<geometry_msgs::TransformStamped>(
+      "/friend_sim/ground_truth/head_base", 2, [p](const geometry_msgs::TransformStampedConstPtr& m) {
+        std::lock_guard<std::mutex> l(p->m);
+        p->head_base = m;
+      });
+  p->left_sub = p->nh->subscribe<geometry_msgs::TransformStamped>(
+      "/friend_sim/ground_truth/left_camera", 2, [p](const geometry_msgs::TransformStampedConstPtr& m) {
+        std::lock_guard<std::mutex> l(p->m);
+        p->left = m;
+      });
+  p->joints_sub = p->nh->subscribe<sensor_msgs::JointState>(
+      "/friend_sim/ground_truth/joint_states", 2, [p](const sensor_msgs::JointStateConstPtr& m) {
+        std::lock_guard<std::mutex> l(p->m);
+        p->joints = m;
+      });
+  p->nominal = std::make_unique<friend_hw_sim::RobotModel>(
+      friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
+  if (!ros::service::waitForService("/friend_calibration/calibrate", ros::Duration(timeout))) {
+    throw std::runtime_error("service /friend_calibration/calibrate is not available after " + std::to_string(timeout) +
+                             " s (is friend_calibration_node running?)");
+  }
+}
+
+CalibrationClient::~CalibrationClient() {
+  if (impl_->spinner) impl_->spinner->stop();
+}
+
+void CalibrationClient::setSimParam(const std::string& name, double value) { ros::param::set("/friend_sim/" + name, value); }
+
+CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& method) {
+  CalibrationRun run;
+  imagenets::Calibrate srv;
+  srv.request.redundancy = redundancy;
+  srv.request.method = method;
+  const auto start = std::chrono::steady_clock::now();
+  if (!ros::service::call("/friend_calibration/calibrate", srv)) {
+    throw std::runtime_error("the call of /friend_calibration/calibrate failed (node died?)");
+  }
+  run.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.response = srv.response;
+  run.fixed_point = frames::toIsometry(srv.response.fixed_point.transform, "response fixed_point");
+  // Ground truth (simulator only): wait briefly for fresh messages.
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(1.0);
+  Impl* p = impl_.get();
+  while (ros::WallTime::now() < end) {
+    {
+      std::lock_guard<std::mutex> l(p->m);
+      if (p->head_base && p->left && p->joints) break;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
+  std::lock_guard<std::mutex> l(p->m);
+  if (!(p->head_base && p->left && p->joints)) return run;
+  run.have_truth = true;
+  run.truth = frames::toIsometry(p->head_base->transform, "ground truth head_base");
+  std::vector<double> head;
+  for (const auto& n : p->nominal->description().head.names()) {
+    for (size_t i = 0; i < p->joints->name.size(); ++i) {
+      if (p->joints->name[i] == n) head.push_back(p->joints->position[i]);
+    }
+  }
+  if (head.size() == 2) {
+    run.effective = frames::toIsometry(p->left->transform, "ground truth left_camera") *
+                    friend_calibration::headChain(*p->nominal, head).inverse();
+  }
+  run.error_mm = (run.fixed_point.translation() - run.truth.translation()).norm() * 1000;
+  run.error_deg = friend_calibration::angleBetween(run.fixed_point, run.truth) * 180 / M_PI;
+  run.effective_error_mm = (run.fixed_point.translation() - run.effective.translation()).norm() * 1000;
+  run.effective_error_deg = friend_calibration::angleBetween(run.fixed_point, run.effective) * 180 / M_PI;
+  return run;
+}
+
+}  // namespace tool
+}  // namespace imagenets

@@ -1,0 +1,254 @@
+// rostest: friend_calibration_node against the simulated FRIEND robot. Starting from the nominal
+// model it recovers the true fixed point (also with spurious-reflection outliers); every failure
+// (marker not found, arm goal aborted, camera silent, concurrent trigger, cancel) leaves the saved
+// calibration byte-identical; a replay of the stored samples reproduces the result.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+#include <actionlib/client/simple_action_client.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "friend_calibration/calibration.h"
+#include "imagenets/Calibrate.h"
+#include "imagenets/CalibrateAction.h"
+#include "imagenets/blocks/frames.h"
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+template <class M>
+class Latest {
+ public:
+  explicit Latest(const std::string& topic) { sub_ = nh_.subscribe(topic, 5, &Latest::cb, this); }
+  boost::shared_ptr<const M> wait(double timeout) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::WallTime::now() < end) {
+      {
+        std::lock_guard<std::mutex> lock(m_);
+        if (last_) return last_;
+      }
+      ros::WallDuration(0.01).sleep();
+    }
+    return nullptr;
+  }
+
+ private:
+  void cb(const boost::shared_ptr<const M>& m) {
+    std::lock_guard<std::mutex> lock(m_);
+    last_ = m;
+  }
+  ros::NodeHandle nh_;
+  ros::Subscriber sub_;
+  std::mutex m_;
+  boost::shared_ptr<const M> last_;
+};
+
+std::string readFile(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) { return imagenets::frames::toIsometry(t, "transform"); }
+
+class FriendCalibration : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ros::NodeHandle pnh("~");
+    file_ = pnh.param<std::string>("calibration_file", "");
+  }
+  void SetUp() override {
+    ASSERT_TRUE(ros::service::waitForService("/friend_calibration/calibrate", ros::Duration(30)));
+    resetFaults();
+  }
+  void TearDown() override { resetFaults(); }
+  static void resetFaults() {
+    for (const char* f : {"reflection_probability", "drop_frame_probability", "corrupt_frame_probability"}) {
+      ros::param::set(std::string("/friend_sim/faults/") + f, 0.0);
+    }
+    ros::param::set("/friend_sim/faults/arm_abort_probability", 0.0);
+    ros::param::set("/friend_sim/camera/illumination", 1.0);
+  }
+  imagenets::Calibrate::Response call(int redundancy, const std::string& replay = "") {
+    imagenets::Calibrate srv;
+    srv.request.redundancy = redundancy;
+    srv.request.replay = replay;
+    EXPECT_TRUE(ros::service::call("/friend_calibration/calibrate", srv));
+    return srv.response;
+  }
+  // Error of a calibration against the simulator's true fixed point, and against the "effective"
+  // one (the true mount with the pan encoder's zero offset folded in: a pan offset turns the whole
+  // head about the mount's z, so no calibration of this frame can tell them apart).
+  void errors(const geometry_msgs::TransformStamped& fixed, double* mm, double* deg, double* eff_mm, double* eff_deg) {
+    auto truth = head_base_.wait(5);
+    auto left = left_camera_.wait(5);
+    auto joints = true_joints_.wait(5);
+    ASSERT_TRUE(truth && left && joints);
+    const Eigen::Isometry3d x = toEigen(fixed.transform), t = toEigen(truth->transform);
+    *mm = (x.translation() - t.translation()).norm() * 1000;
+    *deg = friend_calibration::angleBetween(x, t) / kDeg;
+    friend_hw_sim::RobotModel nominal(friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
+    std::vector<double> head;
+    for (size_t i = 0; i < joints->name.size(); ++i) {
+      if (joints->name[i].rfind("head_", 0) == 0) head.push_back(joints->position[i]);
+    }
+    ASSERT_EQ(head.size(), 2u);
+    const Eigen::Isometry3d effective = toEigen(left->transform) * friend_calibration::headChain(nominal, head).inverse();
+    *eff_mm = (x.translation() - effective.translation()).norm() * 1000;
+    *eff_deg = friend_calibration::angleBetween(x, effective) / kDeg;
+  }
+
+  static std::string file_;
+  Latest<geometry_msgs::TransformStamped> head_base_{"/friend_sim/ground_truth/head_base"},
+      left_camera_{"/friend_sim/ground_truth/left_camera"};
+  Latest<sensor_msgs::JointState> true_joints_{"/friend_sim/ground_truth/joint_states"};
+};
+std::string FriendCalibration::file_;
+
+TEST_F(FriendCalibration, RecoversTheTrueFixedPointAndPublishesIt) {
+  const auto res = call(5);
+  ASSERT_TRUE(res.success) << res.message;
+  EXPECT_EQ(res.samples_used + res.samples_rejected, 5);
+  EXPECT_GE(res.samples_used, 4) << res.message;
+  EXPECT_EQ(res.file, file_);
+  EXPECT_EQ(res.residual_translation.size(), 5u);
+  double mm, deg, eff_mm, eff_deg;
+  errors(res.fixed_point, &mm, &deg, &eff_mm, &eff_deg);
+  std::printf("redundancy 5: error vs true mount %.3f mm / %.4f deg; vs effective fixed point %.3f mm / %.4f deg; "
+              "std %.3f %.3f %.3f mm; %.3f s compute, %.2f s total\n",
+              mm, deg, eff_mm, eff_deg, res.std_dev_translation.x * 1000, res.std_dev_translation.y * 1000,
+              res.std_dev_translation.z * 1000, res.compute_time, res.total_time);
+  EXPECT_LT(mm, 1.0);
+  EXPECT_LT(eff_deg, 0.1);
+  // Published on tf2: base_link -> pth_fixed_point equals the response.
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  geometry_msgs::TransformStamped tf;
+  ASSERT_NO_THROW(tf = buffer.lookupTransform("base_link", "pth_fixed_point", ros::Time(0), ros::Duration(5)));
+  EXPECT_NEAR(tf.transform.translation.x, res.fixed_point.transform.translation.x, 1e-9);
+  EXPECT_NEAR(tf.transform.translation.z, res.fixed_point.transform.translation.z, 1e-9);
+  // The calibrated camera frame hangs from it (paper 4.3).
+  EXPECT_NO_THROW(buffer.lookupTransform("base_link", "calibrated/stereo_left_optical_frame", ros::Time(0), ros::Duration(5)));
+}
+
+TEST_F(FriendCalibration, ReplayOfStoredSamplesReproducesTheResult) {
+  const auto first = call(3);
+  ASSERT_TRUE(first.success) << first.message;
+  const std::string before = readFile(file_);
+  const auto replay = call(0, file_);
+  ASSERT_TRUE(replay.success) << replay.message;
+  EXPECT_NEAR(replay.fixed_point.transform.translation.x, first.fixed_point.transform.translation.x, 1e-9);
+  EXPECT_NEAR(replay.fixed_point.transform.translation.y, first.fixed_point.transform.translation.y, 1e-9);
+  EXPECT_NEAR(replay.fixed_point.transform.translation.z, first.fixed_point.transform.translation.z, 1e-9);
+  EXPECT_NEAR(replay.fixed_point.transform.rotation.w, first.fixed_point.transform.rotation.w, 1e-9);
+  EXPECT_EQ(replay.rejected_samples, first.rejected_samples);
+  EXPECT_EQ(readFile(file_), before) << "a replay must not write the calibration file";
+}
+
+TEST_F(FriendCalibration, OutliersFromSpuriousReflectionsAreRejected) {
+  ros::param::set("/friend_sim/faults/reflection_probability", 0.3);
+  const auto res = call(5);
+  ASSERT_TRUE(res.success) << res.message;
+  double mm, deg, eff_mm, eff_deg;
+  errors(res.fixed_point, &mm, &deg, &eff_mm, &eff_deg);
+  std::printf("redundancy 5 with 30%% reflections: %d used, %d rejected; error %.3f mm / %.4f deg (effective %.3f mm / "
+              "%.4f deg)\n",
+              res.samples_used, res.samples_rejected, mm, deg, eff_mm, eff_deg);
+  EXPECT_LT(mm, 1.0);
+  EXPECT_LT(eff_deg, 0.1);
+}
+
+TEST_F(FriendCalibration, FailuresKeepThePreviousCalibrationByteIdentical) {
+  if (readFile(file_).empty()) ASSERT_TRUE(call(1).success);
+  const std::string before = readFile(file_);
+  ASSERT_FALSE(before.empty());
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  const auto tf_before = buffer.lookupTransform("base_link", "pth_fixed_point", ros::Time(0), ros::Duration(5));
+
+  ros::param::set("/friend_sim/camera/illumination", 0.0);  // black images: no marker
+  auto res = call(3);
+  EXPECT_FALSE(res.success);
+  EXPECT_NE(res.message.find("marker not found"), std::string::npos) << res.message;
+  EXPECT_EQ(readFile(file_), before);
+  resetFaults();
+
+  ros::param::set("/friend_sim/faults/arm_abort_probability", 1.0);
+  res = call(3);
+  EXPECT_FALSE(res.success);
+  EXPECT_NE(res.message.find("arm goal ABORTED"), std::string::npos) << res.message;
+  EXPECT_EQ(readFile(file_), before);
+  resetFaults();
+
+  ros::param::set("/friend_sim/faults/drop_frame_probability", 1.0);
+  res = call(1);
+  EXPECT_FALSE(res.success);
+  EXPECT_NE(res.message.find("camera silent"), std::string::npos) << res.message;
+  EXPECT_EQ(readFile(file_), before);
+  resetFaults();
+
+  res = call(4);
+  EXPECT_FALSE(res.success);
+  EXPECT_NE(res.message.find("odd"), std::string::npos) << res.message;
+  EXPECT_EQ(readFile(file_), before);
+
+  const auto tf_after = buffer.lookupTransform("base_link", "pth_fixed_point", ros::Time(0), ros::Duration(5));
+  EXPECT_EQ(tf_after.transform.translation.x, tf_before.transform.translation.x);
+  EXPECT_EQ(tf_after.transform.rotation.z, tf_before.transform.rotation.z);
+}
+
+TEST_F(FriendCalibration, ConcurrentTriggerIsRejectedAndCancelKeepsTheFile) {
+  if (readFile(file_).empty()) ASSERT_TRUE(call(1).success);
+  const std::string before = readFile(file_);
+  actionlib::SimpleActionClient<imagenets::CalibrateAction> client("/friend_calibration/calibrate_action", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10)));
+  std::mutex m;
+  int feedback_sample = 0, feedback_of = 0;
+  imagenets::CalibrateGoal goal;
+  goal.redundancy = 9;
+  client.sendGoal(goal, {}, {}, [&](const imagenets::CalibrateFeedbackConstPtr& f) {
+    std::lock_guard<std::mutex> lock(m);
+    feedback_sample = f->sample;
+    feedback_of = f->samples;
+  });
+  // Wait until the action reports that it is sampling.
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20);
+  while (ros::WallTime::now() < end) {
+    std::lock_guard<std::mutex> lock(m);
+    if (feedback_sample >= 1) break;
+    ros::WallDuration(0.01).sleep();
+  }
+  {
+    std::lock_guard<std::mutex> lock(m);
+    EXPECT_GE(feedback_sample, 1);
+    EXPECT_EQ(feedback_of, 9);
+  }
+  const auto res = call(1);
+  EXPECT_FALSE(res.success);
+  EXPECT_NE(res.message.find("already running"), std::string::npos) << res.message;
+  client.cancelGoal();
+  ASSERT_TRUE(client.waitForResult(ros::Duration(30)));
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED) << client.getState().getText();
+  EXPECT_NE(client.getResult()->message.find("cancelled"), std::string::npos) << client.getResult()->message;
+  EXPECT_EQ(readFile(file_), before);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "friend_calibration_rostest");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
