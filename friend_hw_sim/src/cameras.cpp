@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/Image.h>
+#include <visualization_msgs/MarkerArray.h>
 #include <yaml-cpp/yaml.h>
 
 #include "friend_hw_sim/friend_sim.h"
@@ -234,6 +235,35 @@ CameraSim::CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& s
   left_ = makeCamera(nh_, "stereo/left", d.left_camera_info, d.left_camera.frame, ss);
   right_ = makeCamera(nh_, "stereo/right", d.right_camera_info, d.right_camera_frame, ss);
   hand_ = makeCamera(nh_, "hand_camera", config + "cameras/friend_hand_camera.yaml", d.hand_camera.frame, ss);
+  // The world's planes as thin boxes for rviz (latched: the world does not change).
+  scene_markers_ = nh_.advertise<visualization_msgs::MarkerArray>("scene_markers", 1, true);
+  visualization_msgs::MarkerArray markers;
+  for (const auto& wp : world_.planes) {
+    visualization_msgs::Marker mk;
+    mk.header.frame_id = d.base_frame;
+    mk.ns = "friend_sim_scene";
+    mk.id = static_cast<int>(markers.markers.size());
+    mk.type = visualization_msgs::Marker::CUBE;
+    const Eigen::Isometry3d centre = wp.pose * fromXyzRpy(Eigen::Vector3d(0, 0, -0.001), Eigen::Vector3d::Zero());
+    mk.pose.position.x = centre.translation().x();
+    mk.pose.position.y = centre.translation().y();
+    mk.pose.position.z = centre.translation().z();
+    const Eigen::Quaterniond q(centre.linear());
+    mk.pose.orientation.x = q.x();
+    mk.pose.orientation.y = q.y();
+    mk.pose.orientation.z = q.z();
+    mk.pose.orientation.w = q.w();
+    mk.scale.x = wp.width;
+    mk.scale.y = wp.height;
+    mk.scale.z = 0.002;
+    const float grey = static_cast<float>(cv::mean(wp.texture)[0] / 255.0);
+    mk.color.r = grey * 0.9f;
+    mk.color.g = grey * 0.8f;
+    mk.color.b = grey * 0.6f;
+    mk.color.a = wp.name == "floor" || wp.name == "wall" ? 0.35f : 1.0f;
+    markers.markers.push_back(mk);
+  }
+  scene_markers_.publish(markers);
   trigger_stereo_ = nh_.advertiseService("stereo/trigger", &CameraSim::triggerStereo, this);
   trigger_hand_ = nh_.advertiseService("hand_camera/trigger", &CameraSim::triggerHand, this);
   thread_ = std::thread([this] { loop(); });

@@ -5,6 +5,7 @@
 // floor and wall (config/friend/scene.yaml).
 //
 // Topics: stereo/{left,right}/{image_raw,camera_info}, hand_camera/{image_raw,camera_info};
+// scene_markers (visualization_msgs/MarkerArray, latched: the world's planes for rviz);
 // services stereo/trigger, hand_camera/trigger (std_srvs/Trigger: render and publish now).
 // Private parameters (read live unless noted):
 //   camera/rate (Hz, 0 = only on trigger; default 5), hand_camera/rate (default 2),
@@ -102,6 +103,7 @@ class CameraSim {
   double marker_size_ = 0.06;
   Camera left_, right_, hand_;
   ros::ServiceServer trigger_stereo_, trigger_hand_;
+  ros::Publisher scene_markers_;
   std::mutex render_mutex_, rng_mutex_;
   std::mt19937 rng_;
   std::uint64_t frame_ = 0;
