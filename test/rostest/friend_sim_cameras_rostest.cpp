@@ -194,6 +194,35 @@ TEST_F(FriendSimCameras, DroppedFramesAndReflectionsFollowTheFaultParameters) {
   // The highlight saturates pixels that are not saturated in the clean image.
   const int saturated_clean = cv::countNonZero(clean >= 250), saturated_glare = cv::countNonZero(glare >= 250);
   EXPECT_GT(saturated_glare, saturated_clean + 20);
+
+  // A corrupted frame: a band of rows shifted sideways, so many rows differ from the clean image.
+  sim.setParam("faults/corrupt_frame_probability", 1.0);
+  ros::Duration(0.3).sleep();
+  ASSERT_TRUE(grab(&l, &r));
+  sim.setParam("faults/corrupt_frame_probability", 0.0);
+  const cv::Mat corrupt = toMat(*l);
+  int rows_changed = 0;
+  for (int y = 0; y < clean.rows; ++y) {
+    cv::Mat d;
+    cv::absdiff(clean.row(y), corrupt.row(y), d);
+    if (cv::mean(d)[0] > 20) ++rows_changed;
+  }
+  EXPECT_GT(rows_changed, clean.rows / 20);
+  EXPECT_LT(rows_changed, clean.rows / 2);
+}
+
+TEST_F(FriendSimCameras, IlluminationIsSettableLive) {
+  ros::NodeHandle sim("friend_sim");
+  sensor_msgs::ImageConstPtr l, r;
+  ros::Duration(0.3).sleep();
+  ASSERT_TRUE(grab(&l, &r));
+  const double bright = cv::mean(toMat(*l))[0];
+  sim.setParam("camera/illumination", 0.5);
+  ros::Duration(0.3).sleep();
+  ASSERT_TRUE(grab(&l, &r));
+  sim.setParam("camera/illumination", 1.0);
+  const double dim = cv::mean(toMat(*l))[0];
+  EXPECT_NEAR(dim / bright, 0.5, 0.05) << "mean gray " << bright << " -> " << dim;
 }
 
 }  // namespace
