@@ -113,17 +113,29 @@ void solveSample(const RobotModel& model, Sample& s, const FusionLimits& limits,
   s.valid = false;
   s.fusion = "none";
   std::optional<Eigen::Isometry3d> left, right;
-  if (s.left.found) left = s.left.pose;
-  if (s.right.found) right = markerInLeftCamera(model, s.right.pose);
+  std::string rejected;
+  auto usable = [&](const MarkerObservation& o, const char* side) {
+    if (!o.found) return false;
+    if (o.reprojection_error > limits.max_reprojection_error) {
+      char b[160];
+      std::snprintf(b, sizeof b, "%s detection rejected: reprojection error %.3f px > %.3f px (disturbed corners); ", side,
+                    o.reprojection_error, limits.max_reprojection_error);
+      rejected += b;
+      return false;
+    }
+    return true;
+  };
+  if (usable(s.left, "left")) left = s.left.pose;
+  if (usable(s.right, "right")) right = markerInLeftCamera(model, s.right.pose);
   const Fusion f = fuseStereoDetections(left, right, limits);
   s.fusion = f.source;
   if (!f.valid) {
     std::string why = f.reason;
-    if (!left && !right) {
+    if (!s.left.found && !s.right.found) {
       why = "marker not found (left: " + (s.left.reason.empty() ? "no detection" : s.left.reason) +
             "; right: " + (s.right.reason.empty() ? "no detection" : s.right.reason) + ")";
     }
-    s.reason = why;
+    s.reason = rejected + why;
     return;
   }
   s.marker_in_left = f.pose;
@@ -131,7 +143,7 @@ void solveSample(const RobotModel& model, Sample& s, const FusionLimits& limits,
                                                  : gripperMarkerInRobot(model, s.arm_q);
   s.fixed_point = pthFixedPoint(model, leftCameraInRobot(marker, s.marker_in_left), s.head_q);
   s.valid = true;
-  s.reason = f.reason;
+  s.reason = rejected + f.reason;
 }
 
 namespace {
@@ -226,6 +238,9 @@ Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions
     r.samples = std::move(samples);
     r.message = "too few valid samples: " + std::to_string(r.used.size()) + " of " + std::to_string(r.samples.size()) +
                 " (need " + std::to_string(std::max(1, options.min_valid_samples)) + ")";
+    if (!r.rejected.empty()) {
+      r.message += "; sample " + std::to_string(r.rejected.front()) + ": " + r.rejection_reasons.front();
+    }
     residuals(r.samples, centre, r);
     return r;
   }
@@ -238,91 +253,150 @@ Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions
   return r;
 }
 
+RobotModel withJointOffsets(const RobotModel& model, const std::vector<double>& arm, const std::vector<double>& head) {
+  friend_hw_sim::RobotDescription d = model.description();
+  for (size_t i = 0; i < arm.size() && i < d.arm.joints.size(); ++i) d.arm.joints[i].theta_offset += arm[i];
+  for (size_t i = 0; i < head.size() && i < d.head.joints.size(); ++i) d.head.joints[i].theta_offset += head[i];
+  return RobotModel(std::move(d));
+}
+
 Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits) {
   Result r = paper;
   r.method = "joint";
   if (!paper.success) return r;
   const Eigen::Isometry3d m_nominal = model.description().marker.pose;
+  const size_t n_arm = model.description().arm.joints.size(), n_head = model.description().head.joints.size();
+  // Identifiable joint offsets: arm joints 2..n-1 and the head's tilt (see the header).
+  std::vector<std::pair<bool, size_t>> offsets;  // (is arm, joint index)
+  for (size_t j = 1; j + 1 < n_arm; ++j) offsets.push_back({true, j});
+  for (size_t j = 1; j < n_head; ++j) offsets.push_back({false, j});
+  const int n_params = 12 + static_cast<int>(offsets.size());
   // Corner and centre points of the marker (its frame), where the residuals are measured.
   const double h = model.description().marker_size / 2;
   const std::vector<Eigen::Vector3d> points{{0, 0, 0}, {-h, h, 0}, {h, h, 0}, {h, -h, 0}, {-h, -h, 0}};
-  const double sigma_point = 0.001;       // m: expected measurement noise of a marker point
-  const double prior_translation = 0.03;  // m: weak prior on the marker offset (see below)
-  const double prior_rotation = 0.175;    // rad (10 deg): weak, only for poses that barely vary
+  const double sigma_point = 0.0002;       // m: expected measurement noise of a marker point
+  const double prior_translation = 0.03;   // m: weak prior on the marker offset
+  const double prior_rotation = 0.175;     // rad (10 deg)
+  const double prior_offset = 0.0035;      // rad (0.2 deg): encoder zero offsets are small
 
-  struct Obs {
-    Eigen::Isometry3d chain_cam_marker;  // headChain * marker_in_left (head_link_0 -> marker)
-    Eigen::Isometry3d tcp;
+  std::vector<const Sample*> used;
+  std::vector<int> used_index = paper.used;
+  for (int i : used_index) used.push_back(&paper.samples[i]);
+  int n_res = 0;
+  struct State {
+    Eigen::Isometry3d x, m;
+    std::vector<double> arm, head;
   };
-  std::vector<Obs> obs;
-  for (int i : paper.used) {
-    const Sample& s = paper.samples[i];
-    obs.push_back({headChain(model, s.head_q) * s.marker_in_left, model.tcp(s.arm_q)});
-  }
-  const int n_res = static_cast<int>(obs.size() * points.size() * 3 + 6);
-  auto residual = [&](const Eigen::Isometry3d& x, const Eigen::Isometry3d& m) {
+  auto residual = [&](const State& st) {
+    const RobotModel mdl = withJointOffsets(model, st.arm, st.head);
+    n_res = static_cast<int>(used.size() * points.size() * 3 + 6 + offsets.size());
     Eigen::VectorXd e(n_res);
     int k = 0;
-    for (const Obs& o : obs) {
-      const Eigen::Isometry3d seen = x * o.chain_cam_marker, kin = o.tcp * m;
+    for (const Sample* s : used) {
+      const Eigen::Isometry3d seen = st.x * headChain(mdl, s->head_q) * s->marker_in_left, kin = mdl.tcp(s->arm_q) * st.m;
       for (const auto& p : points) {
         e.segment<3>(k) = (seen * p - kin * p) / sigma_point;
         k += 3;
       }
     }
-    const Eigen::Isometry3d dm = m_nominal.inverse() * m;
+    const Eigen::Isometry3d dm = m_nominal.inverse() * st.m;
     e.segment<3>(k) = dm.translation() / prior_translation;
     e.segment<3>(k + 3) = logRotation(dm.rotation()) / prior_rotation;
+    k += 6;
+    for (const auto& o : offsets) e[k++] = (o.first ? st.arm[o.second] : st.head[o.second]) / prior_offset;
     return e;
   };
-  Eigen::Isometry3d x = paper.fixed_point, m = m_nominal;
-  double cost = residual(x, m).squaredNorm();
-  double lambda = 1e-3;
-  for (int iter = 0; iter < 30; ++iter) {
-    const Eigen::VectorXd e0 = residual(x, m);
-    Eigen::MatrixXd j(n_res, 12);
-    const double step = 1e-6;
-    for (int c = 0; c < 12; ++c) {
-      Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Zero();
-      d[c % 6] = step;
-      const Eigen::VectorXd e1 = c < 6 ? residual(perturb(x, d), m) : residual(x, perturb(m, d));
-      j.col(c) = (e1 - e0) / step;
+  auto apply = [&](const State& st, const Eigen::VectorXd& d) {
+    State out = st;
+    out.x = perturb(st.x, d.segment<6>(0));
+    out.m = perturb(st.m, d.segment<6>(6));
+    for (size_t i = 0; i < offsets.size(); ++i) {
+      (offsets[i].first ? out.arm[offsets[i].second] : out.head[offsets[i].second]) += d[12 + i];
     }
-    const Eigen::MatrixXd jtj = j.transpose() * j;
-    const Eigen::VectorXd g = j.transpose() * e0;
-    bool improved = false;
-    for (int tries = 0; tries < 10 && !improved; ++tries) {
-      Eigen::MatrixXd a = jtj;
-      a.diagonal() += lambda * jtj.diagonal().cwiseMax(1e-9);
-      const Eigen::VectorXd delta = -a.ldlt().solve(g);
-      const Eigen::Isometry3d x1 = perturb(x, delta.head<6>()), m1 = perturb(m, delta.tail<6>());
-      const double c1 = residual(x1, m1).squaredNorm();
-      if (c1 < cost) {
-        const double gain = cost - c1;
-        x = x1;
-        m = m1;
-        cost = c1;
-        lambda = std::max(1e-9, lambda / 3);
-        improved = true;
-        if (gain < 1e-10 * std::max(1.0, cost)) iter = 1000;
-      } else {
-        lambda *= 10;
+    return out;
+  };
+  // Levenberg-Marquardt from `st` over the samples in `used`.
+  auto fit = [&](State st) {
+    double cost = residual(st).squaredNorm();
+    const int n_res_now = n_res;
+    double lambda = 1e-3;
+    for (int iter = 0; iter < 50; ++iter) {
+      const Eigen::VectorXd e0 = residual(st);
+      Eigen::MatrixXd j(n_res_now, n_params);
+      const double step = 1e-7;
+      for (int c = 0; c < n_params; ++c) {
+        Eigen::VectorXd d = Eigen::VectorXd::Zero(n_params);
+        d[c] = step;
+        j.col(c) = (residual(apply(st, d)) - e0) / step;
       }
+      const Eigen::MatrixXd jtj = j.transpose() * j;
+      const Eigen::VectorXd g = j.transpose() * e0;
+      bool improved = false;
+      double gain = 0;
+      for (int tries = 0; tries < 10 && !improved; ++tries) {
+        Eigen::MatrixXd a = jtj;
+        a.diagonal() += lambda * jtj.diagonal().cwiseMax(1e-9);
+        const Eigen::VectorXd delta = -a.ldlt().solve(g);
+        const State next = apply(st, delta);
+        const double c1 = residual(next).squaredNorm();
+        if (c1 < cost) {
+          gain = cost - c1;
+          st = next;
+          cost = c1;
+          lambda = std::max(1e-9, lambda / 3);
+          improved = true;
+        } else {
+          lambda *= 10;
+        }
+      }
+      if (!improved || gain < 1e-12 * std::max(1.0, cost)) break;
     }
-    if (!improved) break;
+    return st;
+  };
+  State st = fit(State{paper.fixed_point, m_nominal, std::vector<double>(n_arm, 0.0), std::vector<double>(n_head, 0.0)});
+  // A spurious detection that passed the per-sample checks shows as a sample that the joint model
+  // cannot explain: drop the worst while its RMS point residual is far above the others'.
+  std::vector<std::pair<int, double>> dropped;
+  const size_t max_drops = used.size() / 3;
+  while (dropped.size() < max_drops && used.size() > 2) {
+    const Eigen::VectorXd e = residual(st) * sigma_point;
+    std::vector<double> rms(used.size());
+    for (size_t k = 0; k < used.size(); ++k) {
+      rms[k] = e.segment(static_cast<int>(k * points.size() * 3), static_cast<int>(points.size() * 3)).norm() /
+               std::sqrt(static_cast<double>(points.size()));
+    }
+    const size_t worst = static_cast<size_t>(std::max_element(rms.begin(), rms.end()) - rms.begin());
+    const double limit = std::max(0.0003, 5.0 * imagenets::frames::median(rms));
+    if (rms[worst] <= limit) break;
+    dropped.push_back({used_index[worst], rms[worst]});
+    used.erase(used.begin() + worst);
+    used_index.erase(used_index.begin() + worst);
+    st = fit(st);
   }
-  x.linear() = Eigen::Quaterniond(x.rotation()).normalized().toRotationMatrix();
-  r.fixed_point = x;
-  r.marker_offset = m;
-  // Per-sample frames with the estimated marker offset: their spread and residuals.
-  for (int i : r.used) solveSample(model, r.samples[i], limits, m);
+  for (const auto& d : dropped) {
+    r.used.erase(std::find(r.used.begin(), r.used.end(), d.first));
+    r.rejected.push_back(d.first);
+    r.rejection_reasons.push_back("outlier in the joint solution: RMS point residual " + mm(d.second));
+  }
+  st.x.linear() = Eigen::Quaterniond(st.x.rotation()).normalized().toRotationMatrix();
+  r.fixed_point = st.x;
+  r.marker_offset = st.m;
+  r.arm_joint_offsets = st.arm;
+  r.head_joint_offsets = st.head;
+  // Per-sample frames with the estimated model: their spread and residuals.
+  const RobotModel estimated = withJointOffsets(model, st.arm, st.head);
+  for (int i : r.used) solveSample(estimated, r.samples[i], limits, st.m);
   Result spread = r;
   combineUsed(r.samples, spread);
   r.std_translation = spread.std_translation;
   r.std_rotation = spread.std_rotation;
   residuals(r.samples, r.fixed_point, r);
-  r.message += "; joint fixed point + marker offset least squares (marker offset moved " +
-               mm((m_nominal.inverse() * m).translation().norm()) + " / " + deg(angleBetween(m_nominal, m)) + ")";
+  double max_offset = 0;
+  for (double o : st.arm) max_offset = std::max(max_offset, std::abs(o));
+  for (double o : st.head) max_offset = std::max(max_offset, std::abs(o));
+  r.message += "; joint least squares of fixed point, marker offset (moved " +
+               mm((m_nominal.inverse() * st.m).translation().norm()) + " / " + deg(angleBetween(m_nominal, st.m)) +
+               ") and joint zero offsets (largest " + deg(max_offset) + ")";
   return r;
 }
 

@@ -89,6 +89,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   speed_scale_ = pnh_.param("speed_scale", 1.0);
   settle_time_ = pnh_.param("settle_time", 0.0);
   reapproach_ = pnh_.param("reapproach", true);
+  poses_per_loop_ = pnh_.param("poses_per_loop", 2);
   min_valid_fraction_ = pnh_.param("min_valid_fraction", 0.5);
   fusion_.max_position_difference = pnh_.param("fusion/max_position_difference", fusion_.max_position_difference);
   fusion_.max_angle_difference = pnh_.param("fusion/max_angle_difference", fusion_.max_angle_difference);
@@ -267,10 +268,13 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
       throw std::runtime_error("redundancy must be odd and >= 1 (the per-axis median needs a middle value), got " +
                                std::to_string(n));
     }
-    std::vector<Sample> samples = collectSamples(n, method, hooks);
-    if (hooks.progress) hooks.progress(n, n, "solving");
+    // The joint method visits `poses_per_loop` different poses per loop (its unknowns need varied
+    // poses); the paper's method one pose per loop.
+    const int total = method == "joint" ? n * std::max(1, poses_per_loop_) : n;
+    std::vector<Sample> samples = collectSamples(total, method, hooks);
+    if (hooks.progress) hooks.progress(total, total, "solving");
     CombineOptions combine = combine_;
-    combine.min_valid_samples = std::max(1, static_cast<int>(std::ceil(min_valid_fraction_ * n)));
+    combine.min_valid_samples = std::max(1, static_cast<int>(std::ceil(min_valid_fraction_ * total)));
     const Result r = calibrate(model_, std::move(samples), method, fusion_, combine);
     fill(res, r, base, child_frame_);
     res.total_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -314,10 +318,11 @@ std::vector<CalibrationNode::Pose> CalibrationNode::plan(int n, const std::strin
   }
   // Varied poses: the wrist turns the marker (so its offset error and the arm's joint offsets do
   // not bias every sample the same way) and the head follows it, centred in the stereo view.
+  // Each pair turns different joints both ways, so any five poses move every identifiable joint.
   static const std::vector<std::vector<double>> variations_deg{
-      {0, 0, 0, 0, 0, 0, 0},    {0, 0, 0, 0, 0, 0, 25},   {0, 0, 0, 0, 0, 0, -25}, {6, 0, 0, 0, 0, 12, 0},
-      {-6, 0, 0, 0, 0, -12, 0}, {0, 0, 0, 0, 15, 0, 0},   {0, 0, 0, 0, -15, 0, 0}, {0, 8, 0, -8, 0, 0, 12},
-      {0, -8, 0, 8, 0, 0, -12}, {4, 0, 0, 0, 10, 8, 15}};
+      {0, 0, 0, 0, 0, 0, 0},     {0, 0, 0, 0, 10, 0, 25},    {0, 0, 0, 0, -10, 0, -25}, {0, 8, 0, -8, 0, 12, 0},
+      {0, -8, 0, 8, 0, -12, 0},  {6, 0, 8, 0, 0, 0, 12},     {-6, 0, -8, 0, 0, 0, -12}, {0, 5, 0, 5, 12, -8, 0},
+      {0, -5, 0, -5, -12, 8, 0}, {4, 4, 4, 4, 4, 4, 4}};
   for (int k = 0; k < n; ++k) {
     const auto& v = variations_deg[k % variations_deg.size()];
     Pose p;

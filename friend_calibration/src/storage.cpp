@@ -145,6 +145,12 @@ std::string saveCalibration(const StoredCalibration& c, const std::string& path)
   emitFrame(out, r.fixed_point);
   out << YAML::Key << "marker_offset" << YAML::Value;
   emitFrame(out, r.marker_offset);
+  if (!r.arm_joint_offsets.empty()) {
+    out << YAML::Key << "arm_joint_offsets" << YAML::Value;
+    emitList(out, r.arm_joint_offsets);
+    out << YAML::Key << "head_joint_offsets" << YAML::Value;
+    emitList(out, r.head_joint_offsets);
+  }
   out << YAML::Key << "std_dev_translation" << YAML::Value;
   emitVector(out, r.std_translation);
   out << YAML::Key << "std_dev_rotation" << YAML::Value;
@@ -246,6 +252,8 @@ StoredCalibration loadCalibration(const std::string& path) {
     if (root["message"]) r.message = root["message"].as<std::string>();
     r.fixed_point = rd.frame(root, "fixed_point", "");
     if (root["marker_offset"]) r.marker_offset = rd.frame(root, "marker_offset", "");
+    if (root["arm_joint_offsets"]) r.arm_joint_offsets = rd.numbers(root, "arm_joint_offsets", "", 0);
+    if (root["head_joint_offsets"]) r.head_joint_offsets = rd.numbers(root, "head_joint_offsets", "", 0);
     auto st = rd.numbers(root, "std_dev_translation", "", 3), sr = rd.numbers(root, "std_dev_rotation", "", 3);
     r.std_translation = Eigen::Vector3d(st[0], st[1], st[2]);
     r.std_rotation = Eigen::Vector3d(sr[0], sr[1], sr[2]);

@@ -77,23 +77,28 @@ CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& m
   while (ros::WallTime::now() < end) {
     {
       std::lock_guard<std::mutex> l(p->m);
-      if (p->head_base && p->left && p->joints) break;
+      if (p->head_base) break;
     }
     ros::WallDuration(0.01).sleep();
   }
   std::lock_guard<std::mutex> l(p->m);
-  if (!(p->head_base && p->left && p->joints)) return run;
+  if (!p->head_base) return run;
   run.have_truth = true;
   run.truth = frames::toIsometry(p->head_base->transform, "ground truth head_base");
-  std::vector<double> head;
-  for (const auto& n : p->nominal->description().head.names()) {
-    for (size_t i = 0; i < p->joints->name.size(); ++i) {
-      if (p->joints->name[i] == n) head.push_back(p->joints->position[i]);
+  // The pan encoder's zero offset turns the whole head about the mount's z: folded into the
+  // "effective" fixed point (no calibration of this frame can separate the two).
+  std::string error_file;
+  int seed = -1;
+  run.effective = run.truth;
+  if (ros::param::get("/friend_sim/true_error", error_file)) {
+    ros::param::get("/friend_sim/seed", seed);
+    try {
+      const auto error = friend_hw_sim::loadTrueError(error_file, seed);
+      if (!error.head_joint_offsets.empty()) {
+        run.effective = run.truth * Eigen::AngleAxisd(error.head_joint_offsets[0], Eigen::Vector3d::UnitZ());
+      }
+    } catch (const std::exception&) {
     }
-  }
-  if (head.size() == 2) {
-    run.effective = frames::toIsometry(p->left->transform, "ground truth left_camera") *
-                    friend_calibration::headChain(*p->nominal, head).inverse();
   }
   run.error_mm = (run.fixed_point.translation() - run.truth.translation()).norm() * 1000;
   run.error_deg = friend_calibration::angleBetween(run.fixed_point, run.truth) * 180 / M_PI;

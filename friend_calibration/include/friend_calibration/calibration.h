@@ -63,8 +63,11 @@ Eigen::Isometry3d gripperMarkerInRobot(const RobotModel& model, const std::vecto
 Eigen::Isometry3d markerInLeftCamera(const RobotModel& model, const Eigen::Isometry3d& marker_in_right);
 
 struct FusionLimits {
-  double max_position_difference = 0.005;  // m: left and right must agree within this...
-  double max_angle_difference = 0.0524;    // rad (3 deg) ...and this, else the sample is invalid
+  double max_position_difference = 0.002;  // m: left and right must agree within this...
+  double max_angle_difference = 0.0175;    // rad (1 deg) ...and this, else the sample is invalid
+  // A detection whose corners fit its pose worse than this (RMS pixels) is not used: a clean
+  // marker fits to a few hundredths of a pixel, one disturbed by a reflection to tenths.
+  double max_reprojection_error = 0.15;
 };
 struct Fusion {
   bool valid = false;
@@ -105,6 +108,10 @@ struct Result {
   std::string method;  // "paper" or "joint"
   Eigen::Isometry3d fixed_point = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d marker_offset = Eigen::Isometry3d::Identity();  // TCP -> marker used / estimated
+  // Joint zero offsets estimated by the joint method (rad, added to the DH theta offsets; empty =
+  // none). Arm joints 1 and 7 and the pan are not estimated: their offsets are indistinguishable
+  // from a rotation of the fixed point, of the marker offset and of the fixed point about z.
+  std::vector<double> arm_joint_offsets, head_joint_offsets;
   Eigen::Vector3d std_translation = Eigen::Vector3d::Zero();  // m, per axis, over the used samples
   Eigen::Vector3d std_rotation = Eigen::Vector3d::Zero();     // rad, rotation vector per axis
   std::vector<int> used, rejected;                            // sample indices
@@ -118,16 +125,20 @@ struct Result {
 // their translations, after rejecting invalid samples and outliers.
 Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions& options);
 
-// Beyond the paper: least squares over the fixed point X and the marker offset M such that for
-// every used sample  X * headChain(head_q) * marker_in_left * p  =  tcp(arm_q) * M * p  for the
-// marker's corners and centre p (a weak prior keeps M near its nominal value when the poses do not
-// vary enough to observe it). Starts from `paper` (which also decides the outliers).
+// Beyond the paper: least squares over the fixed point X, the marker offset M and the zero offsets
+// of the identifiable joints (arm 2..6, head tilt) such that for every used sample
+//   X * headChain(head_q) * marker_in_left * p  =  tcp(arm_q) * M * p
+// for the marker's corners and centre p (weak priors keep M and the offsets near nominal when the
+// poses do not vary enough to observe them). Starts from `paper` (which also decides the outliers).
 Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits);
 
 // Everything: solveSample on each sample, combine, and (method "joint") the joint solution.
 // Throws std::invalid_argument for an unknown method.
 Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std::string& method,
                  const FusionLimits& limits, const CombineOptions& options);
+
+// The model with joint zero offsets added to its DH theta offsets (empty vectors: unchanged).
+RobotModel withJointOffsets(const RobotModel& model, const std::vector<double>& arm, const std::vector<double>& head);
 
 // Rotation angle between two frames (rad) and the distance between their origins (m).
 double angleBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);

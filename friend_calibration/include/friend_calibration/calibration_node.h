@@ -15,7 +15,7 @@
 //   ~markers            visualization_msgs/MarkerArray: marker poses of all samples (latched)
 // Parameters (private): description, marker, calibration_file, redundancy (5), method (joint),
 //   arm_action, head_action, joint_states, stereo_namespace, camera_timeout (s), motion_timeout
-//   (s), speed_scale, settle_time (s), reapproach (bool), fusion/max_position_difference (m),
+//   (s), speed_scale, settle_time (s), reapproach (bool), poses_per_loop (joint method, 2), fusion/max_position_difference (m),
 //   fusion/max_angle_difference (rad), min_valid_fraction, replay (file re-solved at start-up),
 //   trigger_service (std_srvs/Trigger called after each motion; default stereo/trigger).
 #pragma once
@@ -92,6 +92,7 @@ class CalibrationNode {
   std::string default_method_ = "joint";
   double camera_timeout_ = 3.0, motion_timeout_ = 60.0, speed_scale_ = 1.0, settle_time_ = 0.0;
   bool reapproach_ = true;
+  int poses_per_loop_ = 2;
   double min_valid_fraction_ = 0.5;
   FusionLimits fusion_;
   CombineOptions combine_;
