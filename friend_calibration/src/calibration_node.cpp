@@ -271,12 +271,14 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     // The joint method visits `poses_per_loop` different poses per loop (its unknowns need varied
     // poses); the paper's method one pose per loop.
     const int total = method == "joint" ? n * std::max(1, poses_per_loop_) : n;
+    detection_time_ = 0;
     std::vector<Sample> samples = collectSamples(total, method, hooks);
     if (hooks.progress) hooks.progress(total, total, "solving");
     CombineOptions combine = combine_;
     combine.min_valid_samples = std::max(1, static_cast<int>(std::ceil(min_valid_fraction_ * total)));
     const Result r = calibrate(model_, std::move(samples), method, fusion_, combine);
     fill(res, r, base, child_frame_);
+    res.compute_time = r.compute_time + detection_time_;  // image processing + solving, no motion
     res.total_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!r.success) {
       res.message = "calibration failed: " + r.message + "; the saved calibration and the published frame are unchanged";
@@ -468,7 +470,9 @@ std::vector<Sample> CalibrationNode::collectSamples(int n, const std::string& me
     const StereoPair pair = waitForStereoPair(after, hooks);
     const auto joints = waitForJointStates(after);
     if (hooks.progress) hooks.progress(k + 1, n, "detecting");
+    const auto t0 = std::chrono::steady_clock::now();
     samples.push_back(measure(pair, *joints));
+    detection_time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     {
       std::lock_guard<std::mutex> lock(data_mutex_);
       last_pair_ = {pair.left, pair.right, pair.left_info, pair.right_info};

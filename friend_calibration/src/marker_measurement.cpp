@@ -63,18 +63,22 @@ MarkerObservation detectMarkerRobustly(const cv::Mat& gray, const sensor_msgs::C
     hint = *predicted;
     detector.pose_hint = &hint;
   }
-  auto tryThreshold = [&](int t) {
+  // The sweep compares thresholds without the sub-pixel corner refinement (it hardly changes the
+  // pattern confidence); the chosen threshold is then detected once more with it.
+  mk::DetectorOptions sweep = detector;
+  sweep.refine_passes = 0;
+  auto tryThreshold = [&](int t, const mk::DetectorOptions& o) {
     cv::Mat binary;
     cv::threshold(view, binary, t, 255, cv::THRESH_BINARY);
     Trial trial;
     trial.threshold = t;
-    trial.detection = mk::detect(view, binary, cropped, marker, detector);
+    trial.detection = mk::detect(view, binary, cropped, marker, o);
     return trial;
   };
   Trial best;
   bool any = false;
   for (int t = options.coarse_from; t <= options.coarse_to; t += options.coarse_step) {
-    Trial trial = tryThreshold(t);
+    Trial trial = tryThreshold(t, sweep);
     if (!any || better(trial, best)) best = trial;
     any = true;
   }
@@ -82,10 +86,11 @@ MarkerObservation detectMarkerRobustly(const cv::Mat& gray, const sensor_msgs::C
     const int centre = best.threshold;
     for (int t = centre - options.fine_radius; t <= centre + options.fine_radius; t += options.fine_step) {
       if (t == centre || t < 1 || t > 254) continue;
-      Trial trial = tryThreshold(t);
+      Trial trial = tryThreshold(t, sweep);
       if (better(trial, best)) best = trial;
     }
   }
+  if (best.detection.found && detector.refine_passes > 0) best = tryThreshold(best.threshold, detector);
   MarkerObservation obs;
   obs.found = best.detection.found;
   obs.confidence = best.detection.confidence;

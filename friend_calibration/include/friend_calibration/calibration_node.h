@@ -118,6 +118,7 @@ class CalibrationNode {
   bool have_calibration_ = false;
   Eigen::Isometry3d current_ = Eigen::Isometry3d::Identity();
   std::atomic<bool> busy_{false};
+  double detection_time_ = 0;  // s, robust detection of the running calibration (both images)
   std::string busy_with_;
 };
 

@@ -18,10 +18,10 @@
 namespace friend_calibration {
 
 struct RobustDetectionOptions {
-  int coarse_from = 30, coarse_to = 210, coarse_step = 20;  // threshold sweep, gray levels
-  int fine_radius = 15, fine_step = 5;                      // refinement around the best
+  int coarse_from = 30, coarse_to = 210, coarse_step = 30;  // threshold sweep, gray levels
+  int fine_radius = 10, fine_step = 5;                      // refinement around the best
   double min_confidence = 0.6;
-  int roi_margin_px = 160;  // region of interest: predicted marker +- this (0 = whole image)
+  int roi_margin_px = 120;  // region of interest: predicted marker +- this (0 = whole image)
 };
 
 // `gray`: mono8 image; `info`: its camera_info; `predicted`: T_camera_marker expected from the
