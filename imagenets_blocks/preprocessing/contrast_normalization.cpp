@@ -33,9 +33,9 @@ class ContrastNormalization : public Block {
       return;
     }
     const double gain = (high - low) / (hi - lo);
-    cv::Mat out;
-    in.convertTo(out, CV_8U, gain, low - lo * gain);
-    ctx.output("image", toImageMsg(out, encoding, header));
+    OutputImage out(header, in.rows, in.cols, in.type(), encoding);
+    in.convertTo(out.mat(), CV_8U, gain, low - lo * gain);
+    ctx.output("image", out.finish());
   }
 };
 

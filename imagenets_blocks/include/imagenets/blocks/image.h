@@ -22,5 +22,22 @@ cv::Mat inputImage(const Context& ctx, const std::string& port, std::initializer
 // Wraps `mat` (moved into the message, no second copy) as an image message.
 sensor_msgs::ImagePtr toImageMsg(const cv::Mat& mat, const std::string& encoding, const std_msgs::Header& header);
 
+// An output image message whose pixel buffer OpenCV writes into directly, so the result is not
+// copied into the message afterwards:
+//   OutputImage out(header, in.rows, in.cols, CV_8UC1, "mono8");
+//   cv::threshold(in, out.mat(), ...);
+//   ctx.output("image", out.finish());
+// If an OpenCV call reallocates the matrix anyway, finish() copies it in (correct, just slower).
+class OutputImage {
+ public:
+  OutputImage(const std_msgs::Header& header, int rows, int cols, int type, const std::string& encoding);
+  cv::Mat& mat() { return mat_; }
+  sensor_msgs::ImagePtr finish();
+
+ private:
+  sensor_msgs::ImagePtr msg_;
+  cv::Mat mat_;
+};
+
 }  // namespace blocks
 }  // namespace imagenets
