@@ -33,28 +33,21 @@ cv::Mat inputImage(const Context& ctx, const std::string& port, std::initializer
   }
 }
 
+OutputImage newOutputImage(cv::Size size, int cv_type, const std::string& encoding, const std_msgs::Header& header) {
+  OutputImage out;
+  out.msg = boost::make_shared<sensor_msgs::Image>();
+  out.msg->header = header;
+  out.msg->encoding = encoding;
+  out.msg->height = size.height;
+  out.msg->width = size.width;
+  out.msg->step = static_cast<uint32_t>(size.width * CV_ELEM_SIZE(cv_type));
+  out.msg->data.resize(static_cast<size_t>(out.msg->step) * size.height);
+  out.mat = cv::Mat(size, cv_type, out.msg->data.data(), out.msg->step);
+  return out;
+}
+
 sensor_msgs::ImagePtr toImageMsg(const cv::Mat& mat, const std::string& encoding, const std_msgs::Header& header) {
   return cv_bridge::CvImage(header, encoding, mat).toImageMsg();
-}
-
-OutputImage::OutputImage(const std_msgs::Header& header, int rows, int cols, int type, const std::string& encoding)
-    : msg_(new sensor_msgs::Image) {
-  msg_->header = header;
-  msg_->height = rows;
-  msg_->width = cols;
-  msg_->encoding = encoding;
-  msg_->is_bigendian = false;
-  msg_->step = static_cast<uint32_t>(cols * CV_ELEM_SIZE(type));
-  msg_->data.resize(static_cast<size_t>(msg_->step) * rows);
-  mat_ = cv::Mat(rows, cols, type, msg_->data.data(), msg_->step);
-}
-
-sensor_msgs::ImagePtr OutputImage::finish() {
-  if (mat_.data != msg_->data.data()) {
-    // Reallocated by an OpenCV call: take its result the slow way.
-    return toImageMsg(mat_, msg_->encoding, msg_->header);
-  }
-  return msg_;
 }
 
 }  // namespace blocks

@@ -33,9 +33,9 @@ class ContrastNormalization : public Block {
       return;
     }
     const double gain = (high - low) / (hi - lo);
-    OutputImage out(header, in.rows, in.cols, in.type(), encoding);
-    in.convertTo(out.mat(), CV_8U, gain, low - lo * gain);
-    ctx.output("image", out.finish());
+    OutputImage out = newOutputImage(cv::Size(in.cols, in.rows), in.type(), encoding, header);
+    in.convertTo(out.mat, CV_8U, gain, low - lo * gain);
+    ctx.output("image", out.msg);
   }
 };
 

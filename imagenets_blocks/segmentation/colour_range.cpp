@@ -33,8 +33,8 @@ class ColourRange : public Block {
     } else {
       converted = in;
     }
-    OutputImage result(header, in.rows, in.cols, CV_8UC1, "mono8");
-    cv::Mat& out = result.mat();
+    OutputImage result = newOutputImage(cv::Size(in.cols, in.rows), CV_8UC1, "mono8", header);
+    cv::Mat& out = result.mat;
     if (hsv && lower[0] > upper[0]) {  // hue wraps: [lower, 179] or [0, upper]
       cv::Mat a, b;
       cv::inRange(converted, cv::Scalar(lower[0], lower[1], lower[2]), cv::Scalar(179, upper[1], upper[2]), a);
@@ -43,7 +43,7 @@ class ColourRange : public Block {
     } else {
       cv::inRange(converted, cv::Scalar(lower[0], lower[1], lower[2]), cv::Scalar(upper[0], upper[1], upper[2]), out);
     }
-    ctx.output("image", result.finish());
+    ctx.output("image", result.msg);
   }
 
  private:

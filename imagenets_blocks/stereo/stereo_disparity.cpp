@@ -58,10 +58,10 @@ class StereoDisparity : public Block {
                                                                           : cv::StereoSGBM::MODE_SGBM);
     cv::Mat fixed;  // 16 x disparity, CV_16S; below min_disparity = invalid
     sgbm->compute(left, right, fixed);
-    OutputImage disparity(header, fixed.rows, fixed.cols, CV_32FC1, "32FC1");
-    fixed.convertTo(disparity.mat(), CV_32F, 1.0 / 16);
-    disparity.mat().setTo(std::numeric_limits<float>::quiet_NaN(), fixed < min_d * 16);
-    ctx.output("disparity", disparity.finish());
+    OutputImage disparity = newOutputImage(cv::Size(fixed.cols, fixed.rows), CV_32FC1, "32FC1", header);
+    fixed.convertTo(disparity.mat, CV_32F, 1.0 / 16);
+    disparity.mat.setTo(std::numeric_limits<float>::quiet_NaN(), fixed < min_d * 16);
+    ctx.output("disparity", disparity.msg);
   }
 };
 

@@ -96,6 +96,12 @@ RunReport Executor::runBlock(const std::string& block) {
   return runOutOfDate();
 }
 
+RunReport Executor::runAll() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  out_of_date_.assign(out_of_date_.size(), true);
+  return runOutOfDate();
+}
+
 RunReport Executor::runOutOfDate() {
   std::vector<int> nodes;
   for (int n : net_->topologicalOrder()) {

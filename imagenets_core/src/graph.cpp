@@ -44,20 +44,19 @@ std::string escape(const std::string& s) {
   return out;
 }
 
-std::string color(const std::string& type) { return typeColor(type); }
 }  // namespace
 
-std::string toDot(const Net& net) {
-  std::ostringstream os;
-  std::set<std::string> types;
-  os << "digraph imagenet {\n  rankdir=LR;\n  node [shape=plaintext, fontname=\"Helvetica\"];\n"
-     << "  edge [fontname=\"Helvetica\", fontsize=9];\n";
-  os << "  label=\"" << escape(net.origin()) << "\"; labelloc=t;\n";
+namespace {
+
+// Draws the blocks and links of `net`; node ids get `prefix` so nested nets do not clash.
+void drawNet(std::ostream& os, const Net& net, const std::string& prefix, bool expand, std::set<std::string>& types,
+             const std::string& indent) {
   for (size_t i = 0; i < net.nodes().size(); ++i) {
     const Net::Node& n = net.node(i);
     const Block& b = *n.block;
+    const std::string id = prefix + "b" + std::to_string(i);
     const std::string type = b.info() ? b.info()->type : "?";
-    os << "  b" << i << " [label=<<table border=\"1\" cellborder=\"0\" cellspacing=\"1\" bgcolor=\"#f7f7f7\">";
+    os << indent << id << " [label=<<table border=\"1\" cellborder=\"0\" cellspacing=\"1\" bgcolor=\"#f7f7f7\">";
     os << "<tr><td colspan=\"2\"><b>" << escape(n.name) << "</b></td></tr>";
     os << "<tr><td colspan=\"2\"><font point-size=\"9\">" << escape(type) << "</font></td></tr>";
     const size_t rows = std::max(b.inputs().size(), b.outputs().size());
@@ -66,7 +65,7 @@ std::string toDot(const Net& net) {
       if (r < b.inputs().size()) {
         const PortSpec& p = b.inputs()[r];
         types.insert(p.type->name);
-        os << "<td port=\"i_" << escape(p.name) << "\" align=\"left\" bgcolor=\"" << color(p.type->name) << "\">"
+        os << "<td port=\"i_" << escape(p.name) << "\" align=\"left\" bgcolor=\"" << typeColor(p.type->name) << "\">"
            << escape(p.name) << "</td>";
       } else {
         os << "<td></td>";
@@ -74,7 +73,7 @@ std::string toDot(const Net& net) {
       if (r < b.outputs().size()) {
         const PortSpec& p = b.outputs()[r];
         types.insert(p.type->name);
-        os << "<td port=\"o_" << escape(p.name) << "\" align=\"right\" bgcolor=\"" << color(p.type->name) << "\">"
+        os << "<td port=\"o_" << escape(p.name) << "\" align=\"right\" bgcolor=\"" << typeColor(p.type->name) << "\">"
            << escape(p.name) << "</td>";
       } else {
         os << "<td></td>";
@@ -84,31 +83,58 @@ std::string toDot(const Net& net) {
     for (const auto& spec : b.propertySpecs()) {
       const PropertyValue v = b.propertyValue(spec.name());
       if (v == spec.defaultValue()) continue;
+      std::string text = toString(v);
+      if (text.size() > 48) text = "..." + text.substr(text.size() - 45);
       os << "<tr><td colspan=\"2\" align=\"left\"><font point-size=\"8\">" << escape(spec.name()) << " = "
-         << escape(toString(v)) << "</font></td></tr>";
+         << escape(text) << "</font></td></tr>";
     }
     os << "</table>>];\n";
+    if (expand && b.subNet()) {
+      const Net& inner = *b.subNet();
+      const std::string inner_prefix = id + "_";
+      os << indent << "subgraph cluster_" << id << " {\n"
+         << indent << "  label=\"" << escape(n.name) << ": " << escape(inner.origin()) << "\"; style=rounded; "
+         << "color=\"#888888\";\n";
+      drawNet(os, inner, inner_prefix, expand, types, indent + "  ");
+      os << indent << "}\n";
+      if (!inner.nodes().empty()) {
+        os << indent << id << " -> " << inner_prefix << "b0 [lhead=cluster_" << id
+           << ", style=dotted, arrowhead=none, color=\"#888888\"];\n";
+      }
+    }
   }
   for (size_t i = 0; i < net.nodes().size(); ++i) {
     const Net::Node& n = net.node(i);
+    const std::string id = prefix + "b" + std::to_string(i);
     for (size_t p = 0; p < n.input_links.size(); ++p) {
       const Endpoint& l = n.input_links[p];
       if (!l.valid()) continue;
       const PortSpec& out = net.node(l.node).block->outputs()[l.port];
-      os << "  b" << l.node << ":o_" << out.name << ":e -> b" << i << ":i_" << n.block->inputs()[p].name
-         << ":w [color=\"" << color(out.type->name) << "\", penwidth=2];\n";
+      os << indent << prefix << "b" << l.node << ":o_" << out.name << ":e -> " << id << ":i_"
+         << n.block->inputs()[p].name << ":w [color=\"" << typeColor(out.type->name) << "\", penwidth=2];\n";
     }
     if (n.feedback) {
-      int score = net.findNode(n.feedback->score_block);
-      os << "  b" << score << ":o_" << n.feedback->score_port << " -> b" << i
+      const int score = net.findNode(n.feedback->score_block);
+      os << indent << prefix << "b" << score << ":o_" << n.feedback->score_port << " -> " << id
          << " [style=dashed, color=\"#555555\", constraint=false, label=\"feedback: " << escape(n.feedback->property)
          << " (" << (n.feedback->maximize ? "max" : "min") << ")\"];\n";
     }
   }
+}
+
+}  // namespace
+
+std::string toDot(const Net& net, bool expand_sub_nets) {
+  std::ostringstream os;
+  std::set<std::string> types;
+  os << "digraph imagenet {\n  rankdir=LR; compound=true;\n  node [shape=plaintext, fontname=\"Helvetica\"];\n"
+     << "  edge [fontname=\"Helvetica\", fontsize=9];\n";
+  os << "  label=\"" << escape(net.origin()) << "\"; labelloc=t;\n";
+  drawNet(os, net, "", expand_sub_nets, types, "  ");
   // Legend: one swatch per data type used.
   os << "  legend [label=<<table border=\"0\" cellspacing=\"2\"><tr><td><b>data types</b></td></tr>";
   for (const auto& t : types) {
-    os << "<tr><td bgcolor=\"" << color(t) << "\">" << escape(t) << "</td></tr>";
+    os << "<tr><td bgcolor=\"" << typeColor(t) << "\">" << escape(t) << "</td></tr>";
   }
   os << "</table>>];\n}\n";
   return os.str();

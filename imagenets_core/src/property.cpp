@@ -68,6 +68,8 @@ bool parseInt(const std::string& s, int& out) {
 }  // namespace
 
 PropertyValue PropertySpec::parse(const std::string& raw) const {
+  // Strings are taken as written (a sub-net's inline YAML is a string, not a map to parse).
+  if (kind_ == PropertyKind::String || kind_ == PropertyKind::Enum) return validate(raw);
   std::string text = raw;
   YAML::Node node;
   try {
@@ -114,7 +116,6 @@ PropertyValue PropertySpec::parse(const std::string& raw) const {
     }
     case PropertyKind::String:
     case PropertyKind::Enum:
-      return validate(text);
     case PropertyKind::DoubleList:
       break;
   }

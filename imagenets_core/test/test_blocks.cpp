@@ -123,6 +123,19 @@ class Barrier : public Block {
   }
 };
 
+// Outputs how many times this instance ran (1, 2, 3, ...): tells repetitions apart.
+class Counter : public Block {
+ public:
+  Counter() { addOutput<std_msgs::Float64>("count", "runs so far, this one included"); }
+  void process(Context& ctx) override {
+    count(ctx);
+    ctx.output("count", number(static_cast<double>(++runs_)));
+  }
+
+ private:
+  std::atomic<int> runs_{0};  // test-only state across runs
+};
+
 }  // namespace
 
 int calls(const std::string& block_name) {
@@ -143,4 +156,5 @@ IMAGENETS_REGISTER_BLOCK(imagenets::test::Constant, "test/Constant", "test", "Ou
 IMAGENETS_REGISTER_BLOCK(imagenets::test::Scale, "test/Scale", "test", "in * gain + offset");
 IMAGENETS_REGISTER_BLOCK(imagenets::test::Add, "test/Add", "test", "a + b");
 IMAGENETS_REGISTER_BLOCK(imagenets::test::Parabola, "test/Parabola", "test", "Score with a known peak");
+IMAGENETS_REGISTER_BLOCK(imagenets::test::Counter, "test/Counter", "test", "Counts its runs");
 IMAGENETS_REGISTER_BLOCK(imagenets::test::Barrier, "test/Barrier", "test", "Meets other barriers");

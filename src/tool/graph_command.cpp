@@ -12,13 +12,15 @@ namespace {
 
 int run(const Args& args) {
   std::string net_path, out;
+  bool expand = false;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "-o" || args[i] == "--output") out = flagValue(args, i);
+    else if (args[i] == "--expand") expand = true;
     else if (net_path.empty()) net_path = args[i];
     else throw UsageError("unexpected argument '" + args[i] + "'");
   }
   if (net_path.empty() || out.empty()) throw UsageError("expects a net file and -o FILE");
-  const std::string dot = toDot(*Net::loadFile(net_path));
+  const std::string dot = toDot(*Net::loadFile(net_path), expand);
   const auto ext_pos = out.rfind('.');
   const std::string format = ext_pos == std::string::npos ? "svg" : out.substr(ext_pos + 1);
   if (format == "dot") {
@@ -41,8 +43,8 @@ int run(const Args& args) {
 
 }  // namespace
 
-IMAGENETS_TOOL_COMMAND(graph, "graph", "graph NET -o FILE.svg|.png|.dot",
-                       "draw the net: blocks, ports coloured by data type, links, feedback", run);
+IMAGENETS_TOOL_COMMAND(graph, "graph", "graph NET -o FILE.svg|.png|.dot [--expand]",
+                       "draw the net: blocks, ports coloured by data type, links, feedback; --expand draws sub-nets inside", run);
 
 }  // namespace tool
 }  // namespace imagenets

@@ -88,6 +88,7 @@ struct BlockError : std::runtime_error {
 };
 
 struct BlockInfo;
+class Net;
 
 class Block {
  public:
@@ -98,6 +99,8 @@ class Block {
   virtual void configure() {}
   // Does the work. May run concurrently for feedback trials: keep per-run data in ctx.
   virtual void process(Context& ctx) = 0;
+  // A block that runs a whole net inside (a sub-net) shows it here, for drawing and inspection.
+  virtual const Net* subNet() const { return nullptr; }
 
   const std::vector<PortSpec>& inputs() const { return inputs_; }
   const std::vector<PortSpec>& outputs() const { return outputs_; }

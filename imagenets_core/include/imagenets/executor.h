@@ -62,6 +62,8 @@ class Executor {
   RunReport run();
   // Re-runs one block and what is downstream of it.
   RunReport runBlock(const std::string& block);
+  // Runs every block again, sources included (e.g. one more loop of a repeated sub-net).
+  RunReport runAll();
 
   // Feeds an input port that no link feeds ("block.port"); marks the block out of date.
   void setInput(const std::string& block_port, const Value& value);

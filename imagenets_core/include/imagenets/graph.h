@@ -11,6 +11,7 @@ namespace imagenets {
 
 // A stable colour per data type, the same in every drawing.
 std::string typeColor(const std::string& type_name);
-std::string toDot(const Net& net);
+// expand_sub_nets: draw each sub-net's blocks inside a cluster beside its Executor block.
+std::string toDot(const Net& net, bool expand_sub_nets = false);
 
 }  // namespace imagenets

@@ -19,25 +19,16 @@ namespace blocks {
 cv::Mat inputImage(const Context& ctx, const std::string& port, std::initializer_list<const char*> encodings = {},
                    std::string* encoding = nullptr, std_msgs::Header* header = nullptr);
 
-// Wraps `mat` (moved into the message, no second copy) as an image message.
-sensor_msgs::ImagePtr toImageMsg(const cv::Mat& mat, const std::string& encoding, const std_msgs::Header& header);
-
-// An output image message whose pixel buffer OpenCV writes into directly, so the result is not
-// copied into the message afterwards:
-//   OutputImage out(header, in.rows, in.cols, CV_8UC1, "mono8");
-//   cv::threshold(in, out.mat(), ...);
-//   ctx.output("image", out.finish());
-// If an OpenCV call reallocates the matrix anyway, finish() copies it in (correct, just slower).
-class OutputImage {
- public:
-  OutputImage(const std_msgs::Header& header, int rows, int cols, int type, const std::string& encoding);
-  cv::Mat& mat() { return mat_; }
-  sensor_msgs::ImagePtr finish();
-
- private:
-  sensor_msgs::ImagePtr msg_;
-  cv::Mat mat_;
+// An output image message and a cv::Mat viewing its pixel buffer: OpenCV functions given `mat`
+// as destination write straight into the message, so no copy is made afterwards.
+struct OutputImage {
+  sensor_msgs::ImagePtr msg;
+  cv::Mat mat;
 };
+OutputImage newOutputImage(cv::Size size, int cv_type, const std::string& encoding, const std_msgs::Header& header);
+
+// Copies `mat` into a new image message (use newOutputImage where the size is known up front).
+sensor_msgs::ImagePtr toImageMsg(const cv::Mat& mat, const std::string& encoding, const std_msgs::Header& header);
 
 }  // namespace blocks
 }  // namespace imagenets

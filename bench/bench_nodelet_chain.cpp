@@ -1,0 +1,277 @@
+// bench_nodelet_chain: a 1024x768 image through a chain of 5 block nodelets, all in one nodelet
+// manager (messages pass by pointer) versus the same chain as 5 separate processes (TCPROS).
+// Prints median and p99 latency, end to end and per hop, and throughput, side by side with their
+// ratio. Starts its own ROS master on a private port; needs no sourced environment.
+//
+// The blocks are imagenets/Grayscale fed a mono8 image, which they pass on unchanged (by pointer),
+// so the figures are the cost of the links themselves, not of image processing.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nodelet/loader.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+
+namespace {
+
+constexpr int kBlocks = 5;
+constexpr int kHops = kBlocks + 1;  // driver -> block 1 -> ... -> block 5 -> driver
+constexpr int kLatencySamples = 300;
+constexpr int kThroughputMessages = 500;
+constexpr int kWindow = 2;  // messages in flight during the throughput run
+
+using Clock = std::chrono::steady_clock;
+
+pid_t spawn(const std::vector<std::string>& args, bool quiet) {
+  pid_t pid = fork();
+  if (pid == 0) {
+    if (quiet) {
+      FILE* null = std::fopen("/dev/null", "w");
+      if (null) {
+        dup2(fileno(null), STDOUT_FILENO);
+        dup2(fileno(null), STDERR_FILENO);
+      }
+    }
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execvp(argv[0], argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+void stop(pid_t pid) {
+  if (pid <= 0) return;
+  kill(pid, SIGINT);
+  for (int i = 0; i < 50; ++i) {
+    if (waitpid(pid, nullptr, WNOHANG) == pid) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+}
+
+struct Figures {
+  std::vector<double> latency_us;  // end to end, one message in flight
+  double throughput = 0.0;         // messages per second with kWindow in flight
+  int lost = 0;
+  bool same_pointer = false;       // the image came back as the object sent
+};
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  size_t i = static_cast<size_t>(p * (v.size() - 1) + 0.5);
+  return v[std::min(i, v.size() - 1)];
+}
+
+// Sends images into `in_topic` and times their arrival on `out_topic`.
+class Driver {
+ public:
+  Driver(const std::string& in_topic, const std::string& out_topic) {
+    ros::NodeHandle nh;
+    pub_ = nh.advertise<sensor_msgs::Image>(in_topic, 10);
+    sub_ = nh.subscribe(out_topic, 10, &Driver::onImage, this, ros::TransportHints().tcpNoDelay());
+    image_ = boost::make_shared<sensor_msgs::Image>();
+    image_->width = 1024;
+    image_->height = 768;
+    image_->encoding = "mono8";
+    image_->step = 1024;
+    image_->data.assign(1024 * 768, 128);
+  }
+
+  Figures run() {
+    Figures f;
+    // Warm up: until images make it through the whole chain (connections are set up lazily).
+    int warm = 0;
+    for (int i = 0; i < 200 && warm < 20; ++i) warm += sendAndWait(0.5) >= 0 ? 1 : 0;
+    if (warm == 0) {
+      std::fprintf(stderr, "no image came through the chain\n");
+      std::exit(1);
+    }
+    for (int i = 0; i < kLatencySamples; ++i) {
+      double us = sendAndWait(2.0);
+      if (us < 0) ++f.lost;
+      else f.latency_us.push_back(us);
+    }
+    f.same_pointer = last_same_pointer_;
+    // Throughput: keep kWindow images in flight.
+    const auto start = Clock::now();
+    int sent = 0, done_before;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_before = received_;
+    }
+    while (sent < kThroughputMessages) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (!cv_.wait_for(lock, std::chrono::seconds(2), [&] { return sent - (received_ - done_before) < kWindow; })) {
+        ++f.lost;
+        done_before -= 1;  // give up on one message in flight
+        continue;
+      }
+      lock.unlock();
+      publish();
+      ++sent;
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    cv_.wait_for(lock, std::chrono::seconds(2), [&] { return received_ - done_before >= sent; });
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    f.throughput = (received_ - done_before) / seconds;
+    return f;
+  }
+
+ private:
+  void publish() {
+    auto image = boost::make_shared<sensor_msgs::Image>(*image_);  // a fresh message each time
+    image->header.stamp = ros::Time::now();
+    sensor_msgs::ImageConstPtr sent = image;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      in_flight_ = sent;
+      sent_at_ = Clock::now();
+    }
+    pub_.publish(sent);
+  }
+
+  // End-to-end microseconds, or -1 when nothing came back in time.
+  double sendAndWait(double timeout) {
+    int before;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      before = received_;
+    }
+    publish();
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (!cv_.wait_for(lock, std::chrono::duration<double>(timeout), [&] { return received_ > before; })) return -1;
+    return std::chrono::duration<double, std::micro>(received_at_ - sent_at_).count();
+  }
+
+  void onImage(const sensor_msgs::ImageConstPtr& image) {
+    const auto now = Clock::now();
+    std::lock_guard<std::mutex> lock(mutex_);
+    received_at_ = now;
+    last_same_pointer_ = image.get() == in_flight_.get();
+    ++received_;
+    cv_.notify_all();
+  }
+
+  ros::Publisher pub_;
+  ros::Subscriber sub_;
+  sensor_msgs::ImagePtr image_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  sensor_msgs::ImageConstPtr in_flight_;
+  Clock::time_point sent_at_, received_at_;
+  int received_ = 0;
+  bool last_same_pointer_ = false;
+};
+
+std::string blockName(const std::string& prefix, int i) { return "/" + prefix + std::to_string(i); }
+
+Figures inOneManager() {
+  nodelet::Loader manager(false);  // this process is the manager: driver and blocks share it
+  for (int i = 1; i <= kBlocks; ++i) {
+    const std::string name = blockName("m", i);
+    nodelet::M_string remap{{name + "/in/image", i == 1 ? "/bench/m_in" : blockName("m", i - 1) + "/out/image"}};
+    if (!manager.load(name, "imagenets/Grayscale", remap, {})) {
+      std::fprintf(stderr, "could not load imagenets/Grayscale as a nodelet (plug-in path?)\n");
+      std::exit(1);
+    }
+  }
+  Driver driver("/bench/m_in", blockName("m", kBlocks) + "/out/image");
+  return driver.run();
+}
+
+Figures inSeparateProcesses() {
+  std::vector<pid_t> pids;
+  for (int i = 1; i <= kBlocks; ++i) {
+    const std::string name = blockName("p", i);
+    const std::string input = i == 1 ? "/bench/p_in" : blockName("p", i - 1) + "/out/image";
+    pids.push_back(spawn({"/usr/lib/nodelet/nodelet", "standalone", "imagenets/Grayscale", "__name:=" + name.substr(1),
+                          name + "/in/image:=" + input},
+                         true));
+  }
+  Figures f;
+  {
+    Driver driver("/bench/p_in", blockName("p", kBlocks) + "/out/image");
+    f = driver.run();
+  }
+  for (pid_t pid : pids) stop(pid);
+  return f;
+}
+
+// Runs again through the catkin devel environment so pluginlib finds the imagenets plug-ins.
+void ensureEnvironment(char** argv) {
+  if (std::getenv("IMAGENETS_BENCH_ENV")) return;
+  setenv("IMAGENETS_BENCH_ENV", "1", 1);
+  const std::string path = std::string("/usr/bin:") + (std::getenv("PATH") ? std::getenv("PATH") : "");
+  setenv("PATH", path.c_str(), 1);  // Debian's python for the master
+  const std::string env_sh = std::string(IMAGENETS_DEVEL_PREFIX) + "/env.sh";
+  execl(env_sh.c_str(), env_sh.c_str(), argv[0], static_cast<char*>(nullptr));
+  std::perror(env_sh.c_str());
+  std::exit(1);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ensureEnvironment(argv);
+  const int port = 11800 + static_cast<int>(getpid() % 1000);
+  const std::string uri = "http://localhost:" + std::to_string(port);
+  setenv("ROS_MASTER_URI", uri.c_str(), 1);
+  if (!std::getenv("ROS_HOSTNAME") && !std::getenv("ROS_IP")) setenv("ROS_HOSTNAME", "localhost", 1);
+  pid_t master = spawn({"rosmaster", "--core", "-p", std::to_string(port)}, true);
+
+  ros::init(argc, argv, "bench_nodelet_chain", ros::init_options::NoSigintHandler);
+  for (int i = 0; i < 100 && !ros::master::check(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  if (!ros::master::check()) {
+    std::fprintf(stderr, "the ROS master did not start\n");
+    stop(master);
+    return 1;
+  }
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+
+  Figures manager = inOneManager();
+  Figures processes = inSeparateProcesses();
+
+  auto hop = [](const std::vector<double>& e2e) {
+    std::vector<double> out;
+    for (double v : e2e) out.push_back(v / kHops);
+    return out;
+  };
+  std::printf("1024x768 mono8 image (768 KiB) through %d imagenets/Grayscale block nodelets (they pass mono8 on);\n"
+              "%d topic hops (driver -> blocks -> driver); %d latency samples (one image in flight), %d images for\n"
+              "throughput (%d in flight). Per hop = end-to-end / %d.\n\n",
+              kBlocks, kHops, kLatencySamples, kThroughputMessages, kWindow, kHops);
+  std::printf("%-24s %16s %20s %10s\n", "", "one manager", "separate processes", "ratio");
+  auto row = [](const char* label, double a, double b) {
+    std::printf("%-24s %16.1f %20.1f %9.1fx\n", label, a, b, a > 0 ? b / a : 0.0);
+  };
+  row("median end-to-end (us)", percentile(manager.latency_us, 0.5), percentile(processes.latency_us, 0.5));
+  row("p99 end-to-end (us)", percentile(manager.latency_us, 0.99), percentile(processes.latency_us, 0.99));
+  row("median per hop (us)", percentile(hop(manager.latency_us), 0.5), percentile(hop(processes.latency_us), 0.5));
+  row("p99 per hop (us)", percentile(hop(manager.latency_us), 0.99), percentile(hop(processes.latency_us), 0.99));
+  std::printf("%-24s %16.1f %20.1f %9.1fx\n", "throughput (images/s)", manager.throughput, processes.throughput,
+              processes.throughput > 0 ? manager.throughput / processes.throughput : 0.0);
+  std::printf("%-24s %16s %20s\n", "same object received", manager.same_pointer ? "yes" : "no",
+              processes.same_pointer ? "yes" : "no");
+  std::printf("%-24s %16d %20d\n", "lost images", manager.lost, processes.lost);
+
+  spinner.stop();
+  ros::shutdown();
+  stop(master);
+  return 0;
+}

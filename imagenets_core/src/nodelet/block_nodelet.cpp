@@ -1,0 +1,353 @@
+// The generic nodelet host (see block_nodelet.h for what it offers a launch file).
+#include "imagenets/block_nodelet.h"
+
+#include <chrono>
+#include <mutex>
+#include <set>
+
+#include <dynamic_reconfigure/Reconfigure.h>
+#include <imagenets/BlockStatus.h>
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+
+#include "imagenets/net.h"
+#include "imagenets/registry.h"
+#include "input_pairing.h"
+#include "param_text.h"
+#include "reconfigure.h"
+
+namespace imagenets {
+
+// Properties of the host rather than of the block, declared the same way so they load, check and
+// reconfigure like block properties. A block property of the same name hides the host's.
+std::vector<PropertySpec> hostPropertySpecs() {
+  std::vector<PropertySpec> specs;
+  specs.emplace_back("pairing", PropertyKind::String, std::string("exact"),
+                     "how several inputs are paired by header stamp: exact or approximate (within pairing_slop)");
+  specs.back().choices({"exact", "approximate"});
+  specs.emplace_back("pairing_slop", PropertyKind::Double, 0.05,
+                     "largest stamp difference (s) paired in approximate mode");
+  specs.back().range(0.0, 3600.0);
+  specs.emplace_back("queue_size", PropertyKind::Int, 5, "messages kept per input (subscriber queue and pairing)");
+  specs.back().range(1, 1000);
+  specs.emplace_back("latch", PropertyKind::Bool, false,
+                     "latch the outputs (late subscribers get the last value; costs one serialisation per "
+                     "message); outputs of a source run `once` are always latched");
+  specs.emplace_back("source_mode", PropertyKind::String, std::string("timer"),
+                     "a block without required inputs runs: once (at load), timer (every 1/source_rate s) or "
+                     "trigger (on ~run only)");
+  specs.back().choices({"once", "timer", "trigger"});
+  specs.emplace_back("source_rate", PropertyKind::Double, 1.0, "runs per second of a source in timer mode");
+  specs.back().range(0.001, 1000.0);
+  return specs;
+}
+
+class BlockHost {
+ public:
+  BlockHost(std::unique_ptr<Block> block, std::string name, ros::NodeHandle pnh)
+      : block_(std::move(block)), name_(std::move(name)), pnh_(pnh) {
+    const BlockInfo* info = BlockRegistry::instance().findByTypeId(typeid(*block_));
+    if (info) block_->setInfo(info);
+    type_ = info ? info->type : std::string("?");
+    for (PropertySpec& spec : hostPropertySpecs()) {
+      if (!block_->findProperty(spec.name())) {
+        host_values_[spec.name()] = spec.defaultValue();
+        host_specs_.push_back(std::move(spec));
+      }
+    }
+  }
+
+  // Loads properties, configures the block and opens its topics and services. Throws (after
+  // logging the named errors) when the nodelet must not load.
+  void start() {
+    std::vector<std::string> errors = loadParameters();
+    if (errors.empty()) {
+      try {
+        block_->configure();
+      } catch (const std::exception& e) {
+        errors.push_back(e.what());
+      }
+    }
+    if (!errors.empty()) {
+      std::string text = describe() + ": not loaded:";
+      for (const auto& e : errors) text += "\n  " + e;
+      ROS_ERROR_STREAM(text);
+      throw std::runtime_error(text);
+    }
+    allSpecs();  // the block's ports and properties are final now
+
+    std::vector<bool> required;
+    for (const PortSpec& p : block_->inputs()) required.push_back(!p.optional);
+    pairing_ = std::make_unique<InputPairing>(required, pairingOptions());
+    cached_inputs_.resize(block_->inputs().size());
+
+    const bool latch = hostBool("latch") || (pairing_->isSource() && hostString("source_mode") == "once");
+    const uint32_t queue = static_cast<uint32_t>(hostInt("queue_size"));
+    for (const PortSpec& p : block_->outputs()) publishers_.push_back(p.type->advertise(pnh_, "out/" + p.name, queue, latch));
+    for (size_t i = 0; i < block_->inputs().size(); ++i) {
+      const PortSpec& p = block_->inputs()[i];
+      subscribers_.push_back(p.type->subscribe(pnh_, "in/" + p.name, queue, [this, i](const Value& v) { onInput(i, v); }));
+    }
+
+    status_pub_ = pnh_.advertise<imagenets::BlockStatus>("status", 1, true);
+    descriptions_pub_ = pnh_.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
+    updates_pub_ = pnh_.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
+    descriptions_pub_.publish(describeProperties(specs_));
+    publishUpdates();
+    publishStatus();
+    run_srv_ = pnh_.advertiseService("run", &BlockHost::onRunService, this);
+    set_srv_ = pnh_.advertiseService("set_parameters", &BlockHost::onSetParameters, this);
+    startSource();
+    ROS_DEBUG_STREAM(describe() << ": loaded");
+  }
+
+ private:
+  std::string describe() const { return "nodelet '" + name_ + "' (" + type_ + ")"; }
+
+  // --- properties -------------------------------------------------------------------------
+
+  const std::vector<const PropertySpec*>& allSpecs() {
+    if (specs_.empty()) {
+      for (const PropertySpec& s : block_->propertySpecs()) specs_.push_back(&s);
+      for (const PropertySpec& s : host_specs_) specs_.push_back(&s);
+    }
+    return specs_;
+  }
+  const PropertySpec* findHostSpec(const std::string& name) const {
+    for (const PropertySpec& s : host_specs_) {
+      if (s.name() == name) return &s;
+    }
+    return nullptr;
+  }
+  bool hostBool(const std::string& n) const { return std::get<bool>(host_values_.at(n)); }
+  int hostInt(const std::string& n) const { return std::get<int>(host_values_.at(n)); }
+  double hostDouble(const std::string& n) const { return std::get<double>(host_values_.at(n)); }
+  std::string hostString(const std::string& n) const { return std::get<std::string>(host_values_.at(n)); }
+  PairingOptions pairingOptions() const {
+    PairingOptions o;
+    o.approximate = hostString("pairing") == "approximate";
+    o.slop = hostDouble("pairing_slop");
+    o.history = static_cast<size_t>(hostInt("queue_size"));
+    return o;
+  }
+  PropertyValues currentValues() const {
+    PropertyValues values = block_->propertyValues();
+    for (const auto& kv : host_values_) values[kv.first] = kv.second;
+    return values;
+  }
+
+  // Sets a block or host property; throws PropertyError.
+  void setValue(const std::string& name, const PropertyValue& value) {
+    if (block_->findProperty(name)) {
+      block_->setProperty(name, value);
+    } else if (const PropertySpec* spec = findHostSpec(name)) {
+      host_values_[name] = spec->validate(value);
+    } else {
+      throw PropertyError("unknown property '" + name + "'");
+    }
+  }
+  const PropertySpec* findSpec(const std::string& name) const {
+    if (const PropertySpec* s = block_->findProperty(name)) return s;
+    return findHostSpec(name);
+  }
+  std::string knownNames() const {
+    std::string known;
+    for (const auto& s : block_->propertySpecs()) known += (known.empty() ? "" : ", ") + s.name();
+    for (const auto& s : host_specs_) known += (known.empty() ? "" : ", ") + s.name();
+    return known;
+  }
+
+  // Every ~private parameter must name a property and hold a valid value for it.
+  std::vector<std::string> loadParameters() {
+    std::vector<std::string> errors;
+    std::vector<std::string> all;
+    ros::param::getParamNames(all);
+    const std::string prefix = pnh_.getNamespace() + "/";
+    std::set<std::string> names;
+    for (const std::string& full : all) {
+      if (full.compare(0, prefix.size(), prefix) != 0) continue;
+      std::string rest = full.substr(prefix.size());
+      names.insert(rest.substr(0, rest.find('/')));
+    }
+    for (const std::string& name : names) {
+      const PropertySpec* spec = findSpec(name);
+      if (!spec) {
+        errors.push_back("parameter '" + prefix + name + "': unknown property '" + name + "' (known: " +
+                         knownNames() + ")");
+        continue;
+      }
+      XmlRpc::XmlRpcValue raw;
+      if (!pnh_.getParam(name, raw)) continue;
+      try {
+        PropertyValue v = propertyFromParam(*spec, raw);
+        // Relative paths resolve against the working directory; `$(find pkg)/...` works too.
+        if (spec->isPath()) v = resolvePath(std::get<std::string>(v), "");
+        setValue(name, v);
+      } catch (const std::exception& e) {
+        errors.push_back("parameter '" + prefix + name + "': property '" + name + "': " + e.what());
+      }
+    }
+    return errors;
+  }
+
+  // --- running ------------------------------------------------------------------------------
+
+  void onInput(size_t input, const Value& value) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::optional<std::vector<Value>> set = pairing_->add(input, value);
+    if (!set) return;
+    cached_inputs_ = std::move(*set);
+    have_inputs_ = true;
+    runLocked();
+  }
+
+  // Runs the block on the cached inputs (sources: on their optional inputs' latest values) and
+  // publishes what it outputs. Returns the error, empty on success.
+  std::string runLocked() {
+    if (pairing_->isSource()) cached_inputs_ = pairing_->latest();
+    Context ctx(name_, block_->inputs(), block_->outputs(), cached_inputs_, block_->propertyValues());
+    std::string error;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      block_->process(ctx);
+    } catch (const std::exception& e) {
+      error = describe() + ": " + e.what();
+    }
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    ++runs_;
+    total_ms_ += ms;
+    last_ms_ = ms;
+    if (!error.empty()) {
+      ++failures_;
+      last_error_ = error;
+      ROS_ERROR_STREAM(error);
+    } else {
+      for (size_t i = 0; i < publishers_.size(); ++i) {
+        const Value& out = ctx.outputs()[i];
+        if (out) out.type->publish(publishers_[i], out);  // the pointer itself: zero-copy in-manager
+      }
+    }
+    publishStatus();
+    return error;
+  }
+
+  bool onRunService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!have_inputs_ && !pairing_->isSource()) {
+      res.success = false;
+      res.message = describe() + ": no complete input set received yet";
+      return true;
+    }
+    std::string error = runLocked();
+    res.success = error.empty();
+    res.message = error.empty() ? "ran " + name_ : error;
+    return true;
+  }
+
+  void startSource() {
+    timer_.stop();
+    if (!pairing_->isSource()) return;
+    const std::string mode = hostString("source_mode");
+    auto tick = [this](const ros::TimerEvent&) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      runLocked();
+    };
+    if (mode == "timer") {
+      timer_ = pnh_.createTimer(ros::Duration(1.0 / hostDouble("source_rate")), tick);
+    } else if (mode == "once" && !ran_once_) {
+      ran_once_ = true;
+      // After onInit returns, from the nodelet's own queue (the outputs are latched).
+      timer_ = pnh_.createTimer(ros::Duration(0.01), tick, true);
+    }
+  }
+
+  // --- dynamic_reconfigure ------------------------------------------------------------------
+
+  bool onSetParameters(dynamic_reconfigure::Reconfigure::Request& req,
+                       dynamic_reconfigure::Reconfigure::Response& res) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    bool block_changed = false, host_changed = false;
+    for (const auto& [name, text] : decodeRequest(req.config)) {
+      const PropertySpec* spec = findSpec(name);
+      if (!spec) {
+        ROS_ERROR_STREAM(describe() << ": set_parameters: unknown property '" << name << "' (known: " << knownNames()
+                                    << ")");
+        continue;
+      }
+      try {
+        PropertyValue v = propertyFromRequest(*spec, text);
+        if (spec->isPath()) v = resolvePath(std::get<std::string>(v), "");
+        const PropertyValues before = currentValues();
+        auto old = before.find(name);
+        if (old != before.end() && old->second == v) continue;
+        setValue(name, v);
+        pnh_.setParam(name, propertyToParam(v));  // the server keeps its parameters current
+        (block_->findProperty(name) ? block_changed : host_changed) = true;
+      } catch (const std::exception& e) {
+        ROS_ERROR_STREAM(describe() << ": set_parameters: property '" << name << "': " << e.what());
+      }
+    }
+    if (host_changed) {
+      pairing_->setOptions(pairingOptions());
+      startSource();
+    }
+    res.config = encodeProperties(specs_, currentValues());
+    updates_pub_.publish(res.config);
+    // A change re-runs the block on its cached inputs; its outputs refresh everything downstream.
+    if (block_changed && (have_inputs_ || pairing_->isSource())) runLocked();
+    return true;
+  }
+
+  void publishUpdates() { updates_pub_.publish(encodeProperties(specs_, currentValues())); }
+
+  void publishStatus() {
+    auto s = boost::make_shared<imagenets::BlockStatus>();
+    s->header.stamp = ros::Time::now();
+    s->block = name_;
+    s->type = type_;
+    s->runs = runs_;
+    s->failures = failures_;
+    s->last_ms = last_ms_;
+    s->mean_ms = runs_ ? total_ms_ / static_cast<double>(runs_) : 0.0;
+    s->last_error = last_error_;
+    status_pub_.publish(s);
+  }
+
+  std::unique_ptr<Block> block_;
+  std::string name_, type_;
+  ros::NodeHandle pnh_;
+  std::vector<PropertySpec> host_specs_;
+  PropertyValues host_values_;
+  std::vector<const PropertySpec*> specs_;
+
+  std::mutex mutex_;  // callbacks of one nodelet are serial already; services and timers join them
+  std::unique_ptr<InputPairing> pairing_;
+  std::vector<Value> cached_inputs_;
+  bool have_inputs_ = false;
+  bool ran_once_ = false;
+
+  std::vector<ros::Publisher> publishers_;
+  std::vector<ros::Subscriber> subscribers_;
+  ros::Publisher status_pub_, descriptions_pub_, updates_pub_;
+  ros::ServiceServer run_srv_, set_srv_;
+  ros::Timer timer_;
+
+  uint64_t runs_ = 0, failures_ = 0;
+  double last_ms_ = 0.0, total_ms_ = 0.0;
+  std::string last_error_;
+};
+
+BlockNodeletBase::BlockNodeletBase() = default;
+BlockNodeletBase::~BlockNodeletBase() = default;
+
+void BlockNodeletBase::onInit() {
+  host_ = std::make_unique<BlockHost>(createBlock(), getName(), getPrivateNodeHandle());
+  try {
+    host_->start();
+  } catch (...) {
+    host_.reset();  // nothing half-open survives; the manager carries on
+    throw;
+  }
+}
+
+}  // namespace imagenets

@@ -1,0 +1,77 @@
+#include "input_pairing.h"
+
+#include <cmath>
+
+namespace imagenets {
+
+InputPairing::InputPairing(std::vector<bool> required, PairingOptions options)
+    : required_(std::move(required)), options_(options), history_(required_.size()) {}
+
+bool InputPairing::isSource() const {
+  for (bool r : required_) {
+    if (r) return false;
+  }
+  return true;
+}
+
+ros::Time InputPairing::stampOf(const Value& v) {
+  return (v && v.type && v.type->stamp) ? v.type->stamp(v) : ros::Time();
+}
+
+std::vector<Value> InputPairing::latest() const {
+  std::vector<Value> out(history_.size());
+  for (size_t i = 0; i < history_.size(); ++i) {
+    if (!history_[i].empty()) out[i] = history_[i].back();
+  }
+  return out;
+}
+
+Value InputPairing::partner(size_t input, const ros::Time& stamp) const {
+  const auto& h = history_[input];
+  if (h.empty()) return Value();
+  // No reference time, or this input carries none: its latest value is its contribution.
+  if (stamp.isZero() || stampOf(h.back()).isZero()) return h.back();
+  Value best;
+  double best_dt = 0.0;
+  for (auto it = h.rbegin(); it != h.rend(); ++it) {
+    const ros::Time t = stampOf(*it);
+    if (t.isZero()) continue;
+    const double dt = std::fabs((t - stamp).toSec());
+    if (options_.approximate ? dt <= options_.slop : t == stamp) {
+      if (!best || dt < best_dt) {
+        best = *it;
+        best_dt = dt;
+      }
+    }
+  }
+  return best;
+}
+
+std::optional<std::vector<Value>> InputPairing::add(size_t input, const Value& value) {
+  auto& h = history_.at(input);
+  h.push_back(value);
+  while (h.size() > std::max<size_t>(1, options_.history)) h.pop_front();
+  if (isSource()) return std::nullopt;
+
+  // The time this set is about: the arrival's stamp, or (for a time-less arrival) the newest
+  // stamp held by a required input.
+  ros::Time reference = stampOf(value);
+  if (reference.isZero()) {
+    for (size_t j = 0; j < history_.size() && reference.isZero(); ++j) {
+      if (j != input && required_[j] && !history_[j].empty()) reference = stampOf(history_[j].back());
+    }
+  }
+  std::vector<Value> set(history_.size());
+  for (size_t j = 0; j < history_.size(); ++j) {
+    if (j == input) {
+      set[j] = value;
+      continue;
+    }
+    set[j] = partner(j, reference);
+    if (!set[j] && !required_[j] && !history_[j].empty()) set[j] = history_[j].back();
+    if (!set[j] && required_[j]) return std::nullopt;
+  }
+  return set;
+}
+
+}  // namespace imagenets

@@ -1,0 +1,91 @@
+// The nodelet host's stamp pairing, without ROS: which input sets make a block run.
+#include <gtest/gtest.h>
+#include <sensor_msgs/Image.h>
+#include <std_msgs/Float64.h>
+
+#include "../src/nodelet/input_pairing.h"
+
+namespace imagenets {
+namespace {
+
+Value image(double stamp) {
+  auto m = boost::make_shared<sensor_msgs::Image>();
+  m->header.stamp = ros::Time(stamp);
+  return PortType::of<sensor_msgs::Image>().wrap(sensor_msgs::ImageConstPtr(m));
+}
+Value number(double v) {
+  auto m = boost::make_shared<std_msgs::Float64>();
+  m->data = v;
+  return PortType::of<std_msgs::Float64>().wrap(std_msgs::Float64ConstPtr(m));
+}
+double stampOf(const Value& v) { return v.as<sensor_msgs::Image>()->header.stamp.toSec(); }
+
+TEST(InputPairing, ExactPairsOnlyEqualStampsAndReusesKeptMessages) {
+  InputPairing pairing({true, true}, PairingOptions{});
+  EXPECT_FALSE(pairing.add(0, image(1.0)));
+  EXPECT_FALSE(pairing.add(1, image(2.0)));
+  auto set = pairing.add(1, image(1.0));
+  ASSERT_TRUE(set);
+  EXPECT_EQ(stampOf((*set)[0]), 1.0);
+  EXPECT_EQ(stampOf((*set)[1]), 1.0);
+  // Input 0 re-published for stamp 2 (a property changed upstream): pairs with the kept b@2.
+  set = pairing.add(0, image(2.0));
+  ASSERT_TRUE(set);
+  EXPECT_EQ(stampOf((*set)[1]), 2.0);
+}
+
+TEST(InputPairing, ApproximatePairsTheClosestWithinTheSlop) {
+  PairingOptions options;
+  options.approximate = true;
+  options.slop = 0.1;
+  InputPairing pairing({true, true}, options);
+  pairing.add(1, image(9.95));
+  pairing.add(1, image(10.08));
+  auto set = pairing.add(0, image(10.0));
+  ASSERT_TRUE(set);
+  EXPECT_DOUBLE_EQ(stampOf((*set)[1]), 9.95);  // 0.05 beats 0.08
+  EXPECT_FALSE(pairing.add(0, image(10.5)));
+}
+
+TEST(InputPairing, HeaderlessInputsJoinWithTheirLatestValue) {
+  InputPairing pairing({true, true}, PairingOptions{});
+  EXPECT_FALSE(pairing.add(1, number(5.0)));  // nothing stamped yet on input 0
+  auto set = pairing.add(0, image(3.0));
+  ASSERT_TRUE(set);
+  EXPECT_EQ((*set)[1].as<std_msgs::Float64>()->data, 5.0);
+  set = pairing.add(1, number(6.0));  // re-runs with the newest stamped message
+  ASSERT_TRUE(set);
+  EXPECT_EQ(stampOf((*set)[0]), 3.0);
+}
+
+TEST(InputPairing, OptionalInputsDoNotHoldARunBack) {
+  InputPairing pairing({true, false}, PairingOptions{});
+  auto set = pairing.add(0, image(1.0));
+  ASSERT_TRUE(set);
+  EXPECT_FALSE((*set)[1]);
+  pairing.add(1, image(7.0));
+  set = pairing.add(0, image(2.0));
+  ASSERT_TRUE(set);
+  EXPECT_EQ(stampOf((*set)[1]), 7.0);  // no stamp match: the latest value
+}
+
+TEST(InputPairing, ABlockWithoutRequiredInputsIsASource) {
+  InputPairing pairing({false}, PairingOptions{});
+  EXPECT_TRUE(pairing.isSource());
+  EXPECT_FALSE(pairing.add(0, image(1.0)));
+  EXPECT_EQ(stampOf(pairing.latest()[0]), 1.0);
+}
+
+TEST(InputPairing, KeepsOnlyTheHistoryAskedFor) {
+  PairingOptions options;
+  options.history = 2;
+  InputPairing pairing({true, true}, options);
+  pairing.add(1, image(1.0));
+  pairing.add(1, image(2.0));
+  pairing.add(1, image(3.0));
+  EXPECT_FALSE(pairing.add(0, image(1.0)));  // b@1 was dropped
+  EXPECT_TRUE(pairing.add(0, image(2.0)));
+}
+
+}  // namespace
+}  // namespace imagenets

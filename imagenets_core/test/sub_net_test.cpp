@@ -1,0 +1,203 @@
+// Hierarchy (paper 3.5): nets as blocks, nested, in parallel, repeated.
+#include <fstream>
+
+#include <geometry_msgs/PoseArray.h>
+#include <gtest/gtest.h>
+#include <std_msgs/Float64.h>
+#include <std_msgs/Float64MultiArray.h>
+
+#include "imagenets/executor.h"
+#include "imagenets/graph.h"
+#include "test_blocks.h"
+
+using namespace imagenets;
+
+namespace {
+
+std::string dir() { return ::testing::TempDir(); }
+
+void write(const std::string& name, const std::string& yaml) { std::ofstream(dir() + "/" + name) << yaml; }
+
+std::unique_ptr<Executor> loadFile(const std::string& name, int threads = 2) {
+  return std::make_unique<Executor>(Net::loadFile(dir() + "/" + name), ExecutorOptions{threads});
+}
+
+// in -> scale(gain) -> out: the innermost net.
+const char* kDouble = R"(
+blocks:
+  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  scale: {type: test/Scale, properties: {gain: 2}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+links: [in.value -> scale.in, scale.out -> out.value]
+)";
+
+}  // namespace
+
+TEST(SubNet, PortsComeFromExecutorInputAndOutputBlocks) {
+  write("double.yaml", kDouble);
+  write("outer.yaml", R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 3}}
+  sub: {type: imagenets/Executor, properties: {net: double.yaml}}
+  after: {type: test/Scale, properties: {offset: 1}}
+links: [c.value -> sub.x, sub.y -> after.in]
+)");
+  auto e = loadFile("outer.yaml");
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("sub.y")->data, 6.0);
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("after.out")->data, 7.0);
+}
+
+TEST(SubNet, OuterLinksAreTypeChecked) {
+  write("double.yaml", kDouble);
+  write("bad_outer.yaml", R"(
+blocks:
+  c: {type: test/Constant, feedback: {property: value, from: 0, to: 1, score: p.score}}
+  p: {type: test/Parabola}
+  sub: {type: imagenets/Executor, properties: {net: double.yaml}}
+links: [c.value -> p.x, c.feedback_trace -> sub.x]
+)");
+  try {
+    Net::loadFile(dir() + "/bad_outer.yaml");
+    FAIL();
+  } catch (const NetError& e) {
+    EXPECT_NE(std::string(e.what()).find("type mismatch: output is imagenets/FeedbackTrace, input is std_msgs/Float64"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SubNet, NestsThreeLevelsDeep) {
+  write("level3.yaml", kDouble);
+  write("level2.yaml", R"(
+blocks:
+  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  inner: {type: imagenets/Executor, properties: {net: level3.yaml}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+links: [in.value -> inner.x, inner.y -> out.value]
+)");
+  write("level1.yaml", R"(
+blocks:
+  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  inner: {type: imagenets/Executor, properties: {net: level2.yaml}}
+  twice: {type: imagenets/Executor, properties: {net: level3.yaml}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+links: [in.value -> inner.x, inner.y -> twice.x, twice.y -> out.value]
+)");
+  write("top.yaml", R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 1.5}}
+  sub: {type: imagenets/Executor, properties: {net: level1.yaml}}
+links: [c.value -> sub.x]
+)");
+  auto e = loadFile("top.yaml");
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("sub.y")->data, 6.0);  // 1.5 * 2 * 2
+  // Changing the outer input re-runs the nested nets.
+  e->setProperty("c", "value", 2.0);
+  e->run();
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("sub.y")->data, 8.0);
+}
+
+TEST(SubNet, SelfInclusionIsRejectedWithTheChain) {
+  write("self.yaml", "blocks:\n  me: {type: imagenets/Executor, properties: {net: self.yaml}}\n");
+  write("ping.yaml", "blocks:\n  pong: {type: imagenets/Executor, properties: {net: pong.yaml}}\n");
+  write("pong.yaml", "blocks:\n  ping: {type: imagenets/Executor, properties: {net: ping.yaml}}\n");
+  for (const char* name : {"self.yaml", "ping.yaml"}) {
+    try {
+      Net::loadFile(dir() + "/" + name);
+      FAIL() << name << " loaded";
+    } catch (const NetError& e) {
+      const std::string text = e.what();
+      EXPECT_NE(text.find("includes itself"), std::string::npos) << text;
+      EXPECT_NE(text.find(std::string(name) + " -> "), std::string::npos) << text;
+    }
+  }
+}
+
+TEST(SubNet, TwoInstancesRunIndependentlyAndInParallel) {
+  // Each instance holds a barrier that only opens when both instances are inside it at once.
+  write("meet.yaml", R"(
+blocks:
+  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  meet: {type: test/Barrier, properties: {group: two_subnets, parties: 2}}
+  scale: {type: test/Scale, properties: {gain: 3}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+links: [in.value -> meet.in, in.value -> scale.in, scale.out -> out.value]
+)");
+  write("stereo.yaml", R"(
+blocks:
+  left_in: {type: test/Constant, properties: {value: 1}}
+  right_in: {type: test/Constant, properties: {value: 2}}
+  left: {type: imagenets/Executor, properties: {net: meet.yaml}}
+  right: {type: imagenets/Executor, properties: {net: meet.yaml}}
+links: [left_in.value -> left.x, right_in.value -> right.x]
+)");
+  auto e = loadFile("stereo.yaml", 2);
+  RunReport r = e->run();
+  ASSERT_TRUE(r.ok()) << r.failed[0];
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("left.y")->data, 3.0);
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("right.y")->data, 6.0);
+}
+
+TEST(SubNet, RepeatCollectsNResults) {
+  write("count.yaml", R"(
+blocks:
+  counter: {type: test/Counter}
+  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
+links: [counter.count -> out.value]
+)");
+  write("repeat.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: count.yaml, repeat: 5}}\n");
+  auto e = loadFile("repeat.yaml");
+  ASSERT_TRUE(e->run().ok());
+  auto all = e->output<std_msgs::Float64MultiArray>("loop.n_all");
+  ASSERT_TRUE(all);
+  EXPECT_EQ(all->data, (std::vector<double>{1, 2, 3, 4, 5}));
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("loop.n")->data, 5.0);
+}
+
+TEST(SubNet, RepeatBelowOneIsAClearError) {
+  write("count.yaml", "blocks:\n  counter: {type: test/Counter}\n");
+  write("repeat0.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: count.yaml, repeat: 0}}\n");
+  try {
+    Net::loadFile(dir() + "/repeat0.yaml");
+    FAIL();
+  } catch (const NetError& e) {
+    EXPECT_NE(std::string(e.what()).find("property 'repeat': value 0 is out of range [1, 100000]"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SubNet, InlineYamlNet) {
+  auto spec = parseNetText(R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 4}}
+  sub:
+    type: imagenets/Executor
+    properties:
+      net_yaml: |
+        blocks:
+          in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+          scale: {type: test/Scale, properties: {gain: 0.5}}
+          out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+        links: [in.value -> scale.in, scale.out -> out.value]
+links: [c.value -> sub.x]
+)", "inline.yaml", "");
+  Executor e(Net::build(spec), ExecutorOptions{2});
+  ASSERT_TRUE(e.run().ok());
+  EXPECT_DOUBLE_EQ(e.output<std_msgs::Float64>("sub.y")->data, 2.0);
+}
+
+TEST(SubNet, GraphDrawsSubNetsAsClustersAndFeedbackDashed) {
+  write("double.yaml", kDouble);
+  write("drawn.yaml", R"(
+blocks:
+  c: {type: test/Constant, feedback: {property: value, from: 0, to: 2, score: sub.y}}
+  sub: {type: imagenets/Executor, properties: {net: double.yaml}}
+links: [c.value -> sub.x]
+)");
+  const std::string dot = toDot(*Net::loadFile(dir() + "/drawn.yaml"), true);
+  EXPECT_NE(dot.find("subgraph cluster_"), std::string::npos) << dot;
+  EXPECT_NE(dot.find("style=dashed"), std::string::npos);
+  EXPECT_NE(dot.find("feedback: value (max)"), std::string::npos);
+}
