@@ -8,7 +8,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/image_encodings.h>
+
+#include "imagenets/blocks/point_cloud.h"
 
 namespace imagenets {
 namespace tool {
@@ -55,6 +58,10 @@ std::string writeValue(const Value& value, const std::string& dir, const std::st
   std::string written;
   if (value.type->name == "sensor_msgs/Image") {
     written = writeImage(*value.as<sensor_msgs::Image>(), base + ".png");
+  } else if (value.type->name == "sensor_msgs/PointCloud2") {
+    // A cloud as YAML would be megabytes of numbers: PLY opens in MeshLab / CloudCompare.
+    written = base + ".ply";
+    cloud::writePly(*value.as<sensor_msgs::PointCloud2>(), written);
   } else {
     written = base + ".yaml";
     const std::string tmp = written + ".tmp";

@@ -1,4 +1,5 @@
-// Writes a port value to a file a person can open: images as PNG, everything else as YAML.
+// Writes a port value to a file a person can open: images as PNG, point clouds as PLY, everything
+// else as YAML.
 #pragma once
 
 #include <string>
