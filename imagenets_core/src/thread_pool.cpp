@@ -37,6 +37,7 @@ void ThreadPool::helpUntil(const std::function<bool()>& done) {
       lock.unlock();
       task();
       lock.lock();
+      cv_.notify_all();  // the task may finish what another helper waits for (nested feedback trials)
       continue;
     }
     cv_.wait(lock);
