@@ -97,7 +97,10 @@ MarkerDetectionNet::Result MarkerDetectionNet::run(const sensor_msgs::ImageConst
   }
   const auto out = executor_->output<imagenets::MarkerDetection>("detector.detection");
   if (!out) {
-    result.error = "the net produced no detector.detection";
+    std::ostringstream os;
+    os << "the net produced no detector.detection";
+    for (const auto& n : report.not_run) os << "; " << n;
+    result.error = os.str();
     return result;
   }
   *detection = *out;
