@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <boost/make_shared.hpp>
@@ -23,6 +24,18 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// The machine's 1-minute load average: figures from a shared machine need it beside them.
+std::string loadAverage() {
+  double load = 0;
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf", &load) != 1) load = 0;
+    std::fclose(f);
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.1f", load);
+  return buf;
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -61,7 +74,8 @@ int main() {
     tags.push_back(marker::renderView(*renderer, tag, v, nullptr));
   }
   const int reps = 3;
-  std::printf("marker detection, 1024x768, %zu views x %d repetitions (medians, ms per image)\n", squares.size(), reps);
+  std::printf("marker detection, 1024x768, %zu views x %d repetitions (medians, ms per image; load average %s)\n",
+              squares.size(), reps, loadAverage().c_str());
   std::printf("  render (supersampling 4x4)                  %8.2f\n", median(render_ms));
 
   std::vector<double> direct;
@@ -129,7 +143,8 @@ int main() {
         t.push_back(msSince(t0));
       }
     }
-    std::printf("  libapriltag tag36h11, quad_decimate %.0f, 1 thread %6.2f\n", decimate, median(t));
+    const std::string label = "libapriltag tag36h11, quad_decimate " + std::to_string(static_cast<int>(decimate));
+    std::printf("  %-44s%8.2f\n", label.c_str(), median(t));
   }
   return 0;
 }

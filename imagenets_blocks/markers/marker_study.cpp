@@ -234,6 +234,41 @@ std::string toCsv(const std::vector<StudyRow>& rows) {
   return os.str();
 }
 
+std::vector<StudyRow> fromCsv(const std::string& csv) {
+  std::vector<StudyRow> rows;
+  std::istringstream in(csv);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    if (++n == 1 || line.empty()) continue;  // header
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    std::string cell;
+    while (std::getline(ls, cell, ',')) f.push_back(cell);
+    if (f.size() == 9 && line.back() == ',') f.push_back("");
+    if (f.size() != 10) throw std::runtime_error("study CSV line " + std::to_string(n) + ": expected 10 fields");
+    try {
+      StudyRow r;
+      r.pan = std::stod(f[0]);
+      r.tilt = std::stod(f[1]);
+      r.lighting = f[2];
+      r.illumination = std::stod(f[3]);
+      r.method = f[4];
+      r.found = f[5] == "1";
+      if (r.found) {
+        r.position_error_mm = std::stod(f[6]);
+        r.orientation_error_deg = std::stod(f[7]);
+      }
+      r.threshold = f[8].empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(f[8]);
+      r.ms = f[9].empty() ? 0.0 : std::stod(f[9]);
+      rows.push_back(r);
+    } catch (const std::logic_error&) {
+      throw std::runtime_error("study CSV line " + std::to_string(n) + ": bad number");
+    }
+  }
+  return rows;
+}
+
 std::string toMarkdown(const std::vector<StudySummaryRow>& summary, const StudyConfig& config) {
   std::ostringstream os;
   os << "| lighting | method | detected | median pos. error mm | p95 mm | max mm | median orient. error deg | max deg | median time ms |\n";
@@ -245,10 +280,11 @@ std::string toMarkdown(const std::vector<StudySummaryRow>& summary, const StudyC
        << s.median_mm << " | " << s.p95_mm << " | " << s.max_mm << " | " << s.median_deg << " | " << s.max_deg
        << " | " << std::setprecision(1) << s.median_ms << " |\n";
   }
-  os << "\nMarker " << config.marker << ", camera " << config.camera << ", distance " << config.distance * 1000
-     << " mm, tilt " << config.tilt_from << ".." << config.tilt_to << " step " << config.tilt_step << " deg, pan "
-     << config.pan_from << ".." << config.pan_to << " step " << config.pan_step << " deg; varying illumination "
-     << config.illumination_min << ".." << config.illumination_max << " (log-uniform), seed " << config.seed << ".\n";
+  os << std::setprecision(0) << "\nMarker " << config.marker << ", camera " << config.camera << ", distance "
+     << config.distance * 1000 << " mm, tilt " << config.tilt_from << ".." << config.tilt_to << " step "
+     << config.tilt_step << " deg, pan " << config.pan_from << ".." << config.pan_to << " step " << config.pan_step
+     << " deg; varying illumination " << std::setprecision(2) << config.illumination_min << ".."
+     << config.illumination_max << " (log-uniform), seed " << config.seed << ".\n";
   return os.str();
 }
 
@@ -272,8 +308,11 @@ cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& ligh
   for (int i = 0; i < 256; ++i) ramp.at<uchar>(i) = static_cast<uchar>(i);
   cv::Mat colours;
   cv::applyColorMap(ramp, colours, cv::COLORMAP_VIRIDIS);
+  const double lo = 0.01;  // mm: the bottom of the logarithmic scale
+  const double hi = std::max(scale_mm, 10 * lo);
+  auto level = [&](double mm) { return (std::log10(std::max(mm, lo)) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)); };
   auto colourOf = [&](double mm) {
-    const int i = std::max(0, std::min(255, static_cast<int>(std::lround(255.0 * mm / scale_mm))));
+    const int i = std::max(0, std::min(255, static_cast<int>(std::lround(255.0 * level(mm)))));
     const cv::Vec3b c = colours.at<cv::Vec3b>(i);
     return cv::Scalar(c[0], c[1], c[2]);
   };
@@ -316,16 +355,22 @@ cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& ligh
   // Colour bar.
   const int bx = left + panel_w + 20, by = top + 20, bh = std::max(120, panel_h * 2);
   for (int i = 0; i < bh; ++i) {
-    cv::line(img, cv::Point(bx, by + bh - 1 - i), cv::Point(bx + 16, by + bh - 1 - i),
-             colourOf(scale_mm * i / (bh - 1.0)), 1);
+    const double mm = lo * std::pow(hi / lo, i / (bh - 1.0));
+    cv::line(img, cv::Point(bx, by + bh - 1 - i), cv::Point(bx + 16, by + bh - 1 - i), colourOf(mm), 1);
   }
   cv::rectangle(img, cv::Rect(bx, by, 17, bh), cv::Scalar(0, 0, 0), 1);
-  for (int k = 0; k <= 4; ++k) {
+  std::vector<double> ticks;
+  for (double t = lo; t <= hi * 1.0001; t *= 10) ticks.push_back(t);
+  if (hi / ticks.back() > 1.5) ticks.push_back(hi);
+  for (double t : ticks) {
     std::ostringstream s;
-    s << std::fixed << std::setprecision(scale_mm < 5 ? 2 : 1) << scale_mm * k / 4.0 << (k == 4 ? "+" : "");
-    cv::putText(img, s.str(), cv::Point(bx + 20, by + bh - static_cast<int>(k * (bh - 1) / 4.0) + 4), font, 0.35,
-                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    s << (t < 0.1 ? std::setprecision(2) : std::setprecision(t < 1 ? 1 : 0)) << std::fixed << t;
+    if (t == hi) s << "+";
+    const int y = by + bh - 1 - static_cast<int>(std::lround(level(t) * (bh - 1)));
+    cv::line(img, cv::Point(bx + 17, y), cv::Point(bx + 21, y), cv::Scalar(0, 0, 0), 1);
+    cv::putText(img, s.str(), cv::Point(bx + 24, y + 4), font, 0.35, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
+  cv::putText(img, "mm (log)", cv::Point(bx - 5, by - 6), font, 0.35, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   cv::putText(img, "x = not found", cv::Point(bx - 5, by + bh + 20), font, 0.35, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
   return img;
 }

@@ -4,6 +4,9 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <sstream>
+#include <algorithm>
+#include <cmath>
 
 #include <boost/filesystem.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -41,6 +44,7 @@ int run(const Args& args) {
   marker::StudyConfig config;
   std::string out_dir = "marker_study";
   double scale_mm = 0;
+  std::string from_csv;  // re-plot / re-summarise an earlier run instead of running the study
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--marker") config.marker = flagValue(args, i);
@@ -61,23 +65,39 @@ int run(const Args& args) {
     else if (a == "--supersampling") config.supersampling = std::stoi(flagValue(args, i));
     else if (a == "--seed") config.seed = static_cast<unsigned>(std::stoul(flagValue(args, i)));
     else if (a == "--scale-mm") scale_mm = std::stod(flagValue(args, i));
+    else if (a == "--from-csv") from_csv = flagValue(args, i);
     else throw UsageError("unknown argument '" + a + "'");
   }
   boost::filesystem::create_directories(out_dir);
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto rows = marker::runStudy(config, [&](int done, int total) {
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::cerr << "\rmarker study: " << done << "/" << total << " views, " << static_cast<int>(s) << " s elapsed, ~"
-              << static_cast<int>(s / done * (total - done)) << " s left   " << std::flush;
-  });
-  std::cerr << "\n";
+  std::vector<marker::StudyRow> rows;
+  if (!from_csv.empty()) {
+    std::ifstream in(from_csv);
+    if (!in) throw std::runtime_error(from_csv + ": cannot read");
+    std::stringstream text;
+    text << in.rdbuf();
+    rows = marker::fromCsv(text.str());
+    config.lightings.clear();
+    for (const auto& r : rows) {
+      if (std::find(config.lightings.begin(), config.lightings.end(), r.lighting) == config.lightings.end()) {
+        config.lightings.push_back(r.lighting);
+      }
+    }
+  } else {
+    const auto t0 = std::chrono::steady_clock::now();
+    rows = marker::runStudy(config, [&](int done, int total) {
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::cerr << "\rmarker study: " << done << "/" << total << " views, " << static_cast<int>(s) << " s elapsed, ~"
+                << static_cast<int>(s / done * (total - done)) << " s left   " << std::flush;
+    });
+    std::cerr << "\n";
+  }
   const auto summary = marker::summarize(rows);
   writeAtomically(out_dir + "/study.csv", marker::toCsv(rows));
   const std::string table = marker::toMarkdown(summary, config);
   writeAtomically(out_dir + "/summary.md", table);
   if (!(scale_mm > 0)) {
-    // One colour scale for every picture: the largest error of the square-marker methods and the
-    // peer, rounded up to 0.5 mm (at least 1 mm).
+    // One colour scale for every picture: up to the largest error of any method, rounded up to
+    // 0.5 mm (at least 1 mm).
     for (const auto& s : summary) {
       if (std::isfinite(s.max_mm)) scale_mm = std::max(scale_mm, s.max_mm);
     }
@@ -98,7 +118,8 @@ int run(const Args& args) {
 IMAGENETS_TOOL_COMMAND(marker_study, "marker-study",
                        "marker-study [--output-dir DIR] [--marker M.yaml] [--camera C.yaml] [--net NET.yaml] "
                        "[--distance 0.6] [--pan 0:350:10] [--tilt 0:70:10] [--threshold 40] [--feedback 40:80:1] "
-                       "[--lighting even|varying|both] [--threads N] [--supersampling 4] [--seed N] [--scale-mm S]",
+                       "[--lighting even|varying|both] [--threads N] [--supersampling 4] [--seed N] [--scale-mm S] "
+                       "[--from-csv STUDY.csv]",
                        "the paper's marker accuracy study (5.1, Fig. 5.2): CSV, summary table, error maps", run);
 
 }  // namespace tool

@@ -54,11 +54,13 @@ std::vector<StudyRow> runStudy(const StudyConfig& config,
                                const std::function<void(int done, int total)>& progress = nullptr);
 std::vector<StudySummaryRow> summarize(const std::vector<StudyRow>& rows);
 
-// CSV of every row; Markdown table of the summary.
+// CSV of every row (and back: throws std::runtime_error naming the line); Markdown table of the summary.
 std::string toCsv(const std::vector<StudyRow>& rows);
+std::vector<StudyRow> fromCsv(const std::string& csv);
 std::string toMarkdown(const std::vector<StudySummaryRow>& summary, const StudyConfig& config);
 // Fig. 5.2-style picture for one lighting: position error over pan (x) and tilt (y), one panel per
-// method, one colour scale (0..scale_mm) shared by every panel; not found = grey with a cross.
+// method, one logarithmic colour scale (0.01 mm .. scale_mm) shared by every panel, so that
+// sub-millimetre structure and large errors show in the same picture; not found = grey with a cross.
 cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& lighting, double scale_mm);
 
 }  // namespace marker
