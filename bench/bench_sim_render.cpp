@@ -35,7 +35,7 @@ int main() {
   std::printf("simulated stereo pair, 1024x768 mono8, %zu scene planes + the gripper marker, %u hardware threads\n",
               world.planes.size(), std::thread::hardware_concurrency());
   std::printf("full: the whole scene per frame; still: camera not moved since the last frame (the world\n"
-              "is cached, only the marker is rendered over it); par: left and right on two threads\n");
+              "is cached, only the marker is rendered over it); left and right render on two threads\n");
   std::printf("%-14s %10s %14s %14s %14s %16s %16s\n", "supersampling", "setup ms", "full pair ms", "full pairs/s",
               "still pair ms", "still pairs/s", "still/full speed");
   double pair_ms_default = 0;
