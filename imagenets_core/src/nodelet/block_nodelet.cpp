@@ -6,12 +6,15 @@
 #include <set>
 
 #include <dynamic_reconfigure/Reconfigure.h>
-#include <imagenets/BlockStatus.h>
+#include <pluginlib/class_loader.hpp>
+#include <imagenets/BlockNodeletStatus.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
 #include "imagenets/net.h"
+#include "imagenets/executor.h"
 #include "imagenets/registry.h"
+#include "imagenets/sub_net_access.h"
 #include "input_pairing.h"
 #include "param_text.h"
 #include "reconfigure.h"
@@ -42,6 +45,26 @@ std::vector<PropertySpec> hostPropertySpecs() {
   return specs;
 }
 
+// A sub-net may use any block, but a manager loads only the library of the nodelet it was asked
+// for: load every library that declares imagenets nodelets (once per process; kept loaded).
+void loadBlockLibraries() {
+  static std::mutex mutex;
+  static pluginlib::ClassLoader<nodelet::Nodelet>* loader = nullptr;  // never unloaded
+  std::lock_guard<std::mutex> lock(mutex);
+  if (loader) return;
+  loader = new pluginlib::ClassLoader<nodelet::Nodelet>("nodelet", "nodelet::Nodelet");
+  std::set<std::string> done;
+  for (const std::string& cls : loader->getDeclaredClasses()) {
+    if (loader->getClassPackage(cls) != "imagenets") continue;
+    if (!done.insert(loader->getClassLibraryPath(cls)).second) continue;
+    try {
+      loader->loadLibraryForClass(cls);
+    } catch (const std::exception& e) {
+      ROS_DEBUG_STREAM("block library of " << cls << " not loaded: " << e.what());  // e.g. tests not built
+    }
+  }
+}
+
 class BlockHost {
  public:
   BlockHost(std::unique_ptr<Block> block, std::string name, ros::NodeHandle pnh)
@@ -49,7 +72,14 @@ class BlockHost {
     const BlockInfo* info = BlockRegistry::instance().findByTypeId(typeid(*block_));
     if (info) block_->setInfo(info);
     type_ = info ? info->type : std::string("?");
-    for (PropertySpec& spec : hostPropertySpecs()) {
+    inner_ = dynamic_cast<const SubNetAccess*>(block_.get());
+    std::vector<PropertySpec> host = hostPropertySpecs();
+    if (inner_) {
+      host.emplace_back("publish_internal_ports", PropertyKind::Bool, false,
+                        "publish every output port of the inner net as ~internal/<block>/<port>, only while "
+                        "subscribed");
+    }
+    for (PropertySpec& spec : host) {
       if (!block_->findProperty(spec.name())) {
         host_values_[spec.name()] = spec.defaultValue();
         host_specs_.push_back(std::move(spec));
@@ -63,6 +93,7 @@ class BlockHost {
     std::vector<std::string> errors = loadParameters();
     if (errors.empty()) {
       try {
+        if (inner_) loadBlockLibraries();
         block_->configure();
       } catch (const std::exception& e) {
         errors.push_back(e.what());
@@ -89,7 +120,7 @@ class BlockHost {
       subscribers_.push_back(p.type->subscribe(pnh_, "in/" + p.name, queue, [this, i](const Value& v) { onInput(i, v); }));
     }
 
-    status_pub_ = pnh_.advertise<imagenets::BlockStatus>("status", 1, true);
+    status_pub_ = pnh_.advertise<imagenets::BlockNodeletStatus>("status", 1, true);
     descriptions_pub_ = pnh_.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
     updates_pub_ = pnh_.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
     descriptions_pub_.publish(describeProperties(specs_));
@@ -98,6 +129,7 @@ class BlockHost {
     run_srv_ = pnh_.advertiseService("run", &BlockHost::onRunService, this);
     set_srv_ = pnh_.advertiseService("set_parameters", &BlockHost::onSetParameters, this);
     startSource();
+    publishInternalPorts();  // advertises the inner ports
     ROS_DEBUG_STREAM(describe() << ": loaded");
   }
 
@@ -227,8 +259,32 @@ class BlockHost {
         if (out) out.type->publish(publishers_[i], out);  // the pointer itself: zero-copy in-manager
       }
     }
+    publishInternalPorts();
     publishStatus();
     return error;
+  }
+
+  // publish_internal_ports: every inner output port becomes a topic; a value is published only
+  // while someone subscribes, and only when it is new (the inner net re-ran that block).
+  void publishInternalPorts() {
+    if (!inner_ || !hostBool("publish_internal_ports")) return;
+    const Executor* inner = inner_->subExecutor();
+    if (!inner) return;
+    if (internal_.empty()) {
+      for (const auto& node : inner->net().nodes()) {
+        for (const PortSpec& p : node.block->outputs()) {
+          internal_.push_back({node.name + "." + p.name,
+                               p.type->advertise(pnh_, "internal/" + node.name + "/" + p.name, 1, false), nullptr});
+        }
+      }
+    }
+    for (InternalPort& port : internal_) {
+      if (port.publisher.getNumSubscribers() == 0) continue;
+      const Value v = inner->output(port.block_port);
+      if (!v || v.data.get() == port.last_published) continue;
+      v.type->publish(port.publisher, v);
+      port.last_published = v.data.get();
+    }
   }
 
   bool onRunService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
@@ -301,7 +357,7 @@ class BlockHost {
   void publishUpdates() { updates_pub_.publish(encodeProperties(specs_, currentValues())); }
 
   void publishStatus() {
-    auto s = boost::make_shared<imagenets::BlockStatus>();
+    auto s = boost::make_shared<imagenets::BlockNodeletStatus>();
     s->header.stamp = ros::Time::now();
     s->block = name_;
     s->type = type_;
@@ -313,7 +369,15 @@ class BlockHost {
     status_pub_.publish(s);
   }
 
+  struct InternalPort {
+    std::string block_port;
+    ros::Publisher publisher;
+    const void* last_published;
+  };
+
   std::unique_ptr<Block> block_;
+  const SubNetAccess* inner_ = nullptr;  // set for a block running a net inside
+  std::vector<InternalPort> internal_;
   std::string name_, type_;
   ros::NodeHandle pnh_;
   std::vector<PropertySpec> host_specs_;
