@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <ros/ros.h>
@@ -108,6 +109,44 @@ TEST(ExecutorNodelet, SubNetInputsAreTopics) {
   ASSERT_FALSE(expected.empty());
   expected = 255 - expected;
   expectSameMono8(*image, expected, "exec_in inverted");
+}
+
+// Sets exec_in's inline net through the dynamic_reconfigure protocol; returns the net_yaml the
+// server reports afterwards.
+std::string setNetYaml(const std::string& yaml) {
+  dynamic_reconfigure::Reconfigure set;
+  dynamic_reconfigure::StrParameter p;
+  p.name = "net_yaml";
+  p.value = yaml;
+  set.request.config.strs.push_back(p);
+  EXPECT_TRUE(ros::service::call("exec_in/set_parameters", set));
+  for (const auto& s : set.response.config.strs) {
+    if (s.name == "net_yaml") return s.value;
+  }
+  return "";
+}
+
+TEST(ExecutorNodelet, TheInnerNetCanBeChangedLive) {
+  Latest inverted("exec_in/out/inverted");
+  ASSERT_TRUE(inverted.get(15.0));
+  const int before = inverted.count();
+  cv::Mat binary = cv::imread(toolOutputDir() + "/binary.value.png", cv::IMREAD_UNCHANGED);
+
+  // Same ports, no inversion: the block re-runs on its cached input with the new net.
+  const std::string plain =
+      "blocks:\n"
+      "  image: {type: imagenets/ExecutorInput, properties: {port: image}}\n"
+      "  invert: {type: imagenets/Threshold, properties: {threshold: 128}}\n"
+      "  inverted: {type: imagenets/ExecutorOutput, properties: {port: inverted}}\n"
+      "links: [image.value -> invert.image, invert.image -> inverted.value]\n";
+  EXPECT_EQ(setNetYaml(plain), plain);
+  ASSERT_TRUE(waitFor([&] { return inverted.count() == before + 1; }, 5.0));
+  expectSameMono8(*inverted.get(1.0), binary, "exec_in after the change");
+
+  // A net that does not build is refused; the running net stays.
+  EXPECT_EQ(setNetYaml("blocks: {x: {type: imagenets/NoSuchBlock}}\n"), plain);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(inverted.count(), before + 1);
 }
 
 TEST(ExecutorNodelet, InternalPortsArePublishedWhileSubscribed) {

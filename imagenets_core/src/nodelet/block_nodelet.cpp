@@ -2,6 +2,7 @@
 #include "imagenets/block_nodelet.h"
 
 #include <chrono>
+#include <functional>
 #include <mutex>
 #include <set>
 
@@ -67,8 +68,8 @@ void loadBlockLibraries() {
 
 class BlockHost {
  public:
-  BlockHost(std::unique_ptr<Block> block, std::string name, ros::NodeHandle pnh)
-      : block_(std::move(block)), name_(std::move(name)), pnh_(pnh) {
+  BlockHost(std::function<std::unique_ptr<Block>()> factory, std::string name, ros::NodeHandle pnh)
+      : factory_(std::move(factory)), block_(factory_()), name_(std::move(name)), pnh_(pnh) {
     const BlockInfo* info = BlockRegistry::instance().findByTypeId(typeid(*block_));
     if (info) block_->setInfo(info);
     type_ = info ? info->type : std::string("?");
@@ -322,7 +323,8 @@ class BlockHost {
   bool onSetParameters(dynamic_reconfigure::Reconfigure::Request& req,
                        dynamic_reconfigure::Reconfigure::Response& res) {
     std::lock_guard<std::mutex> lock(mutex_);
-    bool block_changed = false, host_changed = false;
+    PropertyValues block_changes, host_changes;
+    const PropertyValues before = currentValues();
     for (const auto& [name, text] : decodeRequest(req.config)) {
       const PropertySpec* spec = findSpec(name);
       if (!spec) {
@@ -333,24 +335,63 @@ class BlockHost {
       try {
         PropertyValue v = propertyFromRequest(*spec, text);
         if (spec->isPath()) v = resolvePath(std::get<std::string>(v), "");
-        const PropertyValues before = currentValues();
         auto old = before.find(name);
         if (old != before.end() && old->second == v) continue;
-        setValue(name, v);
-        pnh_.setParam(name, propertyToParam(v));  // the server keeps its parameters current
-        (block_->findProperty(name) ? block_changed : host_changed) = true;
+        (block_->findProperty(name) ? block_changes : host_changes)[name] = v;
       } catch (const std::exception& e) {
         ROS_ERROR_STREAM(describe() << ": set_parameters: property '" << name << "': " << e.what());
       }
     }
-    if (host_changed) {
+    if (!block_changes.empty() && !reconfigureBlock(block_changes)) block_changes.clear();
+    for (const auto& [name, v] : host_changes) host_values_[name] = v;
+    if (!host_changes.empty()) {
       pairing_->setOptions(pairingOptions());
       startSource();
+    }
+    for (const auto* changes : {&block_changes, &host_changes}) {
+      for (const auto& [name, v] : *changes) pnh_.setParam(name, propertyToParam(v));  // params stay current
     }
     res.config = encodeProperties(specs_, currentValues());
     updates_pub_.publish(res.config);
     // A change re-runs the block on its cached inputs; its outputs refresh everything downstream.
-    if (block_changed && (have_inputs_ || pairing_->isSource())) runLocked();
+    if (!block_changes.empty() && (have_inputs_ || pairing_->isSource())) runLocked();
+    return true;
+  }
+
+  // Applies block property changes through a fresh, configured block: properties that configure()
+  // reads (a sub-net's `net`) take effect too, and a value configure() rejects leaves the running
+  // block as it was. The ports must stay the same, since topics are already wired.
+  bool reconfigureBlock(const PropertyValues& changes) {
+    std::unique_ptr<Block> fresh = factory_();
+    fresh->setInfo(block_->info());
+    try {
+      for (const auto& [name, v] : block_->propertyValues()) {
+        auto changed = changes.find(name);
+        fresh->setProperty(name, changed != changes.end() ? changed->second : v);
+      }
+      if (inner_) loadBlockLibraries();
+      fresh->configure();
+    } catch (const std::exception& e) {
+      ROS_ERROR_STREAM(describe() << ": set_parameters: change refused: " << e.what());
+      return false;
+    }
+    auto samePorts = [](const std::vector<PortSpec>& a, const std::vector<PortSpec>& b) {
+      if (a.size() != b.size()) return false;
+      for (size_t i = 0; i < a.size(); ++i) {
+        if (a[i].name != b[i].name || a[i].type != b[i].type || a[i].optional != b[i].optional) return false;
+      }
+      return true;
+    };
+    if (!samePorts(fresh->inputs(), block_->inputs()) || !samePorts(fresh->outputs(), block_->outputs())) {
+      ROS_ERROR_STREAM(describe() << ": set_parameters: change refused: it changes the block's ports; reload the "
+                                     "nodelet with the new parameters instead");
+      return false;
+    }
+    block_ = std::move(fresh);
+    inner_ = dynamic_cast<const SubNetAccess*>(block_.get());
+    internal_.clear();  // inner ports are advertised again for the new inner net
+    specs_.clear();
+    allSpecs();
     return true;
   }
 
@@ -375,6 +416,7 @@ class BlockHost {
     const void* last_published;
   };
 
+  std::function<std::unique_ptr<Block>()> factory_;
   std::unique_ptr<Block> block_;
   const SubNetAccess* inner_ = nullptr;  // set for a block running a net inside
   std::vector<InternalPort> internal_;
@@ -405,7 +447,7 @@ BlockNodeletBase::BlockNodeletBase() = default;
 BlockNodeletBase::~BlockNodeletBase() = default;
 
 void BlockNodeletBase::onInit() {
-  host_ = std::make_unique<BlockHost>(createBlock(), getName(), getPrivateNodeHandle());
+  host_ = std::make_unique<BlockHost>([this] { return createBlock(); }, getName(), getPrivateNodeHandle());
   try {
     host_->start();
   } catch (...) {
