@@ -32,11 +32,12 @@ std::vector<PropertySpec> hostPropertySpecs() {
   specs.emplace_back("pairing_slop", PropertyKind::Double, 0.05,
                      "largest stamp difference (s) paired in approximate mode");
   specs.back().range(0.0, 3600.0);
-  specs.emplace_back("queue_size", PropertyKind::Int, 5, "messages kept per input (subscriber queue and pairing)");
+  specs.emplace_back("queue_size", PropertyKind::Int, 5,
+                     "messages kept per input (subscriber queue and pairing); load time only");
   specs.back().range(1, 1000);
   specs.emplace_back("latch", PropertyKind::Bool, false,
                      "latch the outputs (late subscribers get the last value; costs one serialisation per "
-                     "message); outputs of a source run `once` are always latched");
+                     "message); outputs of a source run `once` are always latched; load time only");
   specs.emplace_back("source_mode", PropertyKind::String, std::string("timer"),
                      "a block without required inputs runs: once (at load), timer (every 1/source_rate s) or "
                      "trigger (on ~run only)");
@@ -337,6 +338,9 @@ class BlockHost {
         if (spec->isPath()) v = resolvePath(std::get<std::string>(v), "");
         auto old = before.find(name);
         if (old != before.end() && old->second == v) continue;
+        if (!block_->findProperty(name) && (name == "latch" || name == "queue_size")) {
+          throw PropertyError("takes effect at load only (the topics are open); reload the nodelet to change it");
+        }
         (block_->findProperty(name) ? block_changes : host_changes)[name] = v;
       } catch (const std::exception& e) {
         ROS_ERROR_STREAM(describe() << ": set_parameters: property '" << name << "': " << e.what());
