@@ -33,6 +33,19 @@ cv::Mat inputImage(const Context& ctx, const std::string& port, std::initializer
   }
 }
 
+OutputImage newOutputImage(cv::Size size, int cv_type, const std::string& encoding, const std_msgs::Header& header) {
+  OutputImage out;
+  out.msg = boost::make_shared<sensor_msgs::Image>();
+  out.msg->header = header;
+  out.msg->encoding = encoding;
+  out.msg->height = size.height;
+  out.msg->width = size.width;
+  out.msg->step = static_cast<uint32_t>(size.width * CV_ELEM_SIZE(cv_type));
+  out.msg->data.resize(static_cast<size_t>(out.msg->step) * size.height);
+  out.mat = cv::Mat(size, cv_type, out.msg->data.data(), out.msg->step);
+  return out;
+}
+
 sensor_msgs::ImagePtr toImageMsg(const cv::Mat& mat, const std::string& encoding, const std_msgs::Header& header) {
   return cv_bridge::CvImage(header, encoding, mat).toImageMsg();
 }

@@ -22,9 +22,9 @@ class GaussianBlur : public Block {
     cv::Mat in = inputImage(ctx, "image", {"mono8", "bgr8", "rgb8"}, &encoding, &header);
     const int k = ctx.property<int>("kernel_size");
     if (k % 2 == 0) throw BlockError("property 'kernel_size': " + std::to_string(k) + " is even (must be odd)");
-    cv::Mat out;
-    cv::GaussianBlur(in, out, cv::Size(k, k), ctx.property<double>("sigma"));
-    ctx.output("image", toImageMsg(out, encoding, header));
+    OutputImage out = newOutputImage(in.size(), in.type(), encoding, header);
+    cv::GaussianBlur(in, out.mat, cv::Size(k, k), ctx.property<double>("sigma"));
+    ctx.output("image", out.msg);
   }
 };
 

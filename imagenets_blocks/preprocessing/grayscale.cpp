@@ -28,9 +28,9 @@ class Grayscale : public Block {
                                                   {"rgb8", cv::COLOR_RGB2GRAY},
                                                   {"bgra8", cv::COLOR_BGRA2GRAY},
                                                   {"rgba8", cv::COLOR_RGBA2GRAY}};
-    cv::Mat gray;
-    cv::cvtColor(in, gray, codes.at(encoding));
-    ctx.output("image", toImageMsg(gray, "mono8", header));
+    OutputImage gray = newOutputImage(in.size(), CV_8UC1, "mono8", header);
+    cv::cvtColor(in, gray.mat, codes.at(encoding));
+    ctx.output("image", gray.msg);
   }
 };
 

@@ -19,10 +19,10 @@ class Threshold : public Block {
   void process(Context& ctx) override {
     std_msgs::Header header;
     cv::Mat in = inputImage(ctx, "image", {"mono8"}, nullptr, &header);
-    cv::Mat out;
+    OutputImage out = newOutputImage(in.size(), CV_8UC1, "mono8", header);
     const int type = ctx.property<bool>("invert") ? cv::THRESH_BINARY_INV : cv::THRESH_BINARY;
-    cv::threshold(in, out, ctx.property<int>("threshold"), 255, type);
-    ctx.output("image", toImageMsg(out, "mono8", header));
+    cv::threshold(in, out.mat, ctx.property<int>("threshold"), 255, type);
+    ctx.output("image", out.msg);
   }
 };
 

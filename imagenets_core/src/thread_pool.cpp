@@ -37,6 +37,7 @@ void ThreadPool::helpUntil(const std::function<bool()>& done) {
       lock.unlock();
       task();
       lock.lock();
+      cv_.notify_all();  // the task may have finished what another waiter waits for
       continue;
     }
     cv_.wait(lock);

@@ -188,3 +188,14 @@ links: [c.value -> s.in, s.out -> p.x]
 )"),
       "candidate for 'offset': value 1100 is out of range [-1000, 1000]");
 }
+
+TEST_F(FeedbackTest, ManyParallelSweepsNeverDeadlock) {
+  // Trials nest (sweep -> trial -> blocks) on one pool whose waiting threads help run queued
+  // tasks; a lost wake-up there once hung real nets. Hammer it: a hang fails by ctest's timeout.
+  auto e = load(sweepNet("{property: value, from: 0, to: 30, step: 1, score: score.score}", 7), 3);
+  for (int i = 0; i < 150; ++i) {
+    e->setProperty("score", "peak", static_cast<double>(i % 31));
+    ASSERT_TRUE(e->run().ok());
+    ASSERT_DOUBLE_EQ(e->output<FeedbackTrace>("x.feedback_trace")->chosen_value, i % 31);
+  }
+}

@@ -19,7 +19,15 @@ namespace blocks {
 cv::Mat inputImage(const Context& ctx, const std::string& port, std::initializer_list<const char*> encodings = {},
                    std::string* encoding = nullptr, std_msgs::Header* header = nullptr);
 
-// Wraps `mat` (moved into the message, no second copy) as an image message.
+// An output image message and a cv::Mat viewing its pixel buffer: OpenCV functions given `mat`
+// as destination write straight into the message, so no copy is made afterwards.
+struct OutputImage {
+  sensor_msgs::ImagePtr msg;
+  cv::Mat mat;
+};
+OutputImage newOutputImage(cv::Size size, int cv_type, const std::string& encoding, const std_msgs::Header& header);
+
+// Copies `mat` into a new image message (use newOutputImage where the size is known up front).
 sensor_msgs::ImagePtr toImageMsg(const cv::Mat& mat, const std::string& encoding, const std_msgs::Header& header);
 
 }  // namespace blocks

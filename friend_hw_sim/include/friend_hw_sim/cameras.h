@@ -1,0 +1,102 @@
+// Simulated cameras of the FRIEND robot: the stereo camera on the pan-tilt head (left/right
+// image_raw + camera_info, identical stamps) and the hand camera on the gripper. Images are
+// rendered from the TRUE geometry (where the arm and head really are) with the shared renderer
+// (imagenets/blocks/render.h): the gripper marker on its plate, plus a textured table, boxes,
+// floor and wall (config/friend/scene.yaml).
+//
+// Topics: stereo/{left,right}/{image_raw,camera_info}, hand_camera/{image_raw,camera_info};
+// services stereo/trigger, hand_camera/trigger (std_srvs/Trigger: render and publish now).
+// Private parameters (read live unless noted):
+//   camera/rate (Hz, 0 = only on trigger; default 5), hand_camera/rate (default 2),
+//   camera/illumination (1.0), camera/noise (gray levels, 1.5), camera/blur (px, 0.6),
+//   camera/color (false: mono8), camera/supersampling (at start, 2), scene (file, at start),
+//   marker_texture (PNG, at start; default: generated ARToolKit-like marker),
+//   faults/drop_frame_probability, faults/corrupt_frame_probability,
+//   faults/reflection_probability (a specular highlight near the marker: outlier detections).
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <std_srvs/Trigger.h>
+
+#include "imagenets/blocks/render.h"
+
+namespace friend_hw_sim {
+
+class FriendSim;
+struct RobotState;
+
+// A textured plane fixed in the world (base frame).
+struct WorldPlane {
+  std::string name;
+  cv::Mat texture;
+  double width = 1, height = 1, albedo = 1;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
+struct WorldScene {
+  std::vector<WorldPlane> planes;
+  Eigen::Vector3d light_direction{0.4, 0.3, -1.0};
+  double ambient = 0.45, diffuse = 0.55;
+};
+
+// Loads config/friend/scene.yaml; throws naming the file and key on bad input.
+WorldScene loadWorldScene(const std::string& path);
+// The default gripper marker texture: black square border (1/4 of the side) around a white field
+// with an asymmetric black pattern (so its orientation is unique), like ARToolKit markers.
+cv::Mat defaultMarkerTexture(int pixels = 240);
+
+// Renders what one camera at `camera_in_base` sees: the world, the gripper marker at
+// `marker_in_base` (with its white plate), at the given options.
+cv::Mat renderView(const imagenets::render::Renderer& renderer, const WorldScene& world, const cv::Mat& marker_texture,
+                   double marker_size, const Eigen::Isometry3d& marker_in_base, const Eigen::Isometry3d& camera_in_base,
+                   const imagenets::render::RenderOptions& options);
+
+class CameraSim {
+ public:
+  CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& sim);
+  ~CameraSim();
+
+ private:
+  struct Camera {
+    std::string name, frame;
+    sensor_msgs::CameraInfo info;
+    std::unique_ptr<imagenets::render::Renderer> renderer;
+    ros::Publisher image, camera_info;
+  };
+  void loop();
+  void publishStereo();
+  void publishHand();
+  bool triggerStereo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  bool triggerHand(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  imagenets::render::RenderOptions options(std::uint64_t seed);
+  // Applies the configured faults; returns false when the frame is dropped.
+  bool applyFaults(cv::Mat& image, const Camera& cam, const Eigen::Isometry3d& camera_in_base,
+                   const Eigen::Isometry3d& marker_in_base);
+  void publish(Camera& cam, const cv::Mat& image, const ros::Time& stamp);
+  Camera makeCamera(ros::NodeHandle nh, const std::string& name, const std::string& info_file,
+                    const std::string& frame, int supersampling);
+
+  ros::NodeHandle nh_, pnh_;
+  const FriendSim& sim_;
+  WorldScene world_;
+  cv::Mat marker_texture_;
+  Camera left_, right_, hand_;
+  ros::ServiceServer trigger_stereo_, trigger_hand_;
+  std::mutex render_mutex_, rng_mutex_;
+  std::mt19937 rng_;
+  std::uint64_t frame_ = 0;
+  std::atomic<bool> running_{true};
+  std::thread thread_;
+};
+
+}  // namespace friend_hw_sim

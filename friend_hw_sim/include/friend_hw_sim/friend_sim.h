@@ -1,0 +1,75 @@
+// The simulated FRIEND robot as one ROS node: arm and pan-tilt-head action servers, joint_states
+// at 50 Hz, force-torque sensor, world model, cameras, and the ground truth (the true robot's
+// frames) on ~ground_truth/... for tests and studies only.
+//
+// Topics/services/actions (relative to the node's namespace, like real drivers):
+//   arm/move_joints, head/move_joints     imagenets/MoveJoints actions
+//   joint_states                          sensor_msgs/JointState (arm + head, encoder readings)
+//   ft_sensor/wrench                      geometry_msgs/WrenchStamped
+//   world_model/set, world_model/get      imagenets/WorldModelSet, WorldModelGet
+//   ~ground_truth/{tcp,marker,left_camera,right_camera,head_base,hand_camera}
+//                                         geometry_msgs/TransformStamped (base -> frame, true robot)
+//   ~ground_truth/joint_states            exact joint angles (no encoder noise)
+// Parameters (private): description, true_error, seed, time_scale, joint_state_rate,
+//   encoder_noise (rad), faults/arm_abort_probability, faults/head_abort_probability,
+//   ft_sensor/{payload_mass, payload_com, force_noise, torque_noise}; camera ones in cameras.h.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+
+#include "friend_hw_sim/joint_group_server.h"
+#include "friend_hw_sim/robot_model.h"
+#include "imagenets/WorldModelGet.h"
+#include "imagenets/WorldModelSet.h"
+
+namespace friend_hw_sim {
+
+class CameraSim;
+
+// A snapshot of the simulated robot at one instant.
+struct RobotState {
+  ros::Time stamp;
+  std::vector<double> arm, head;  // true joint angles (encoder values before noise)
+  bool arm_moving = false, head_moving = false;
+};
+
+class FriendSim {
+ public:
+  FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~FriendSim();
+
+  RobotState state() const;
+  const RobotModel& nominal() const { return nominal_; }
+  const RobotModel& truth() const { return truth_; }
+  double timeScale() const { return time_scale_; }
+
+ private:
+  void tick(const ros::TimerEvent& e);
+  bool setObject(imagenets::WorldModelSet::Request& req, imagenets::WorldModelSet::Response& res);
+  bool getObject(imagenets::WorldModelGet::Request& req, imagenets::WorldModelGet::Response& res);
+  void publishGroundTruth(const RobotState& s);
+  void publishWrench(const RobotState& s);
+
+  ros::NodeHandle nh_, pnh_;
+  RobotModel nominal_, truth_;
+  double time_scale_ = 1.0;
+  std::unique_ptr<JointGroupServer> arm_, head_;
+  ros::Publisher joint_states_, truth_joint_states_, wrench_;
+  std::map<std::string, ros::Publisher> truth_frames_;
+  ros::ServiceServer set_object_, get_object_;
+  ros::Timer timer_;
+  ros::Time last_tick_;
+  mutable std::mutex mutex_;
+  std::mt19937 rng_;
+  std::map<std::string, imagenets::WorldModelSet::Request> world_;
+  std::unique_ptr<CameraSim> cameras_;
+};
+
+}  // namespace friend_hw_sim

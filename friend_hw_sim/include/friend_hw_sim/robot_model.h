@@ -1,0 +1,115 @@
+// The FRIEND robot's geometry: loaded once from config/friend/robot.yaml (classic DH tables for
+// the arm and the pan-tilt head, fixed mounts, marker, cameras), with forward kinematics, and the
+// "true robot" that the simulator runs: the nominal description plus a hidden, realistic error.
+// Kept small and self-contained (Eigen + yaml-cpp) so the simulator, the URDF generator, the
+// hardware blocks and the calibration all compute the same kinematics.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace YAML {
+class Node;
+}
+
+namespace friend_hw_sim {
+
+// One revolute joint in classic DH: T(i-1 -> i) = Rz(q + theta_offset) Tz(d) Tx(a) Rx(alpha).
+struct DhJoint {
+  std::string name;
+  double a = 0, alpha = 0, d = 0, theta_offset = 0;  // m, rad
+  double min = 0, max = 0, max_velocity = 0;          // rad, rad, rad/s
+};
+
+Eigen::Isometry3d dhTransform(const DhJoint& joint, double q);
+// URDF meaning: Translation(xyz) * Rz(yaw) * Ry(pitch) * Rx(roll).
+Eigen::Isometry3d fromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
+// Inverse of the rotation part of fromXyzRpy (well defined at pitch = +-90 deg too).
+Eigen::Vector3d rpyOf(const Eigen::Matrix3d& r);
+
+struct DhChain {
+  std::string link_prefix;        // link i is link_prefix + i; link 0 is the mount's child
+  Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // base -> link 0
+  std::vector<DhJoint> joints;
+  std::vector<std::string> names() const;
+  // Frames of links 0..n in the base frame (n + 1 entries). Throws if q has the wrong size.
+  std::vector<Eigen::Isometry3d> linkFrames(const std::vector<double>& q) const;
+  Eigen::Isometry3d end(const std::vector<double>& q) const { return linkFrames(q).back(); }
+  // Empty when q is inside the limits; otherwise a sentence naming the joint, value and limits.
+  std::string limitViolation(const std::vector<double>& q) const;
+};
+
+struct FixedFrame {
+  std::string frame;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // relative to its parent
+};
+
+struct RobotDescription {
+  std::string source;  // file it was loaded from (for messages)
+  std::string base_frame = "base_link";
+  DhChain arm, head;
+  FixedFrame tool;         // arm last link -> TCP
+  FixedFrame marker;       // TCP -> marker centre (z out of the face)
+  double marker_size = 0.06;
+  FixedFrame hand_camera;  // TCP -> hand camera optical frame
+  FixedFrame ft_sensor;    // arm last link -> force-torque sensor
+  FixedFrame left_camera;  // head last link -> left optical frame
+  std::string right_camera_frame = "stereo_right_optical_frame";
+  double stereo_baseline = 0.12;  // right camera sits at +baseline along the left optical x
+  int image_width = 1024, image_height = 768;
+  std::string left_camera_info, right_camera_info;  // absolute paths (may not exist)
+  std::vector<double> arm_calibration_pose, arm_home, head_calibration_pose, head_home;
+};
+
+// Loads the description; throws std::runtime_error naming the file and the key on bad input.
+RobotDescription loadRobotDescription(const std::string& path);
+// The default description shipped with the package (config/friend/robot.yaml), found via
+// rospack when available, else relative to the source tree.
+std::string defaultRobotDescriptionPath();
+
+// Forward kinematics of a description. Arm joint vector: 7 angles; head: pan, tilt.
+class RobotModel {
+ public:
+  explicit RobotModel(RobotDescription description) : d_(std::move(description)) {}
+  const RobotDescription& description() const { return d_; }
+
+  Eigen::Isometry3d tcp(const std::vector<double>& arm_q) const;          // base -> TCP
+  Eigen::Isometry3d marker(const std::vector<double>& arm_q) const;       // base -> marker
+  Eigen::Isometry3d handCamera(const std::vector<double>& arm_q) const;   // base -> hand optical
+  Eigen::Isometry3d ftSensor(const std::vector<double>& arm_q) const;     // base -> F/T sensor
+  Eigen::Isometry3d headBase() const { return d_.head.mount; }            // base -> head_link_0
+  Eigen::Isometry3d leftCamera(const std::vector<double>& head_q) const;  // base -> left optical
+  Eigen::Isometry3d rightCamera(const std::vector<double>& head_q) const; // base -> right optical
+  // Right optical frame in the left optical frame (pure translation by the baseline).
+  Eigen::Isometry3d leftToRight() const;
+
+  // Pan and tilt (rad) that put `target` (base frame) on the optical axis of the camera centred
+  // between the two stereo cameras ("look at the TCP", paper Fig. 3.1). Iterative, from the
+  // given start; clamps to the joint limits.
+  std::array<double, 2> lookAt(const Eigen::Vector3d& target, std::array<double, 2> start = {0, 0}) const;
+
+ private:
+  RobotDescription d_;
+};
+
+// The simulator's hidden deviation of the true robot from the nominal description.
+struct TrueRobotError {
+  Eigen::Vector3d head_mount_xyz = Eigen::Vector3d::Zero();  // m, added to the head mount
+  Eigen::Vector3d head_mount_rpy = Eigen::Vector3d::Zero();  // rad, rotation applied after the mount
+  Eigen::Vector3d marker_xyz = Eigen::Vector3d::Zero();
+  Eigen::Vector3d marker_rpy = Eigen::Vector3d::Zero();
+  std::vector<double> arm_joint_offsets, head_joint_offsets;  // rad, added to theta_offset
+};
+
+// Reads `true_error` settings (see config/friend/true_error.yaml). With `seed` > 0 the error is
+// drawn at random with the given magnitudes (repeatable per seed); with seed 0 the explicit values
+// are used. Throws naming the key on bad input.
+TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override = -1);
+TrueRobotError loadTrueError(const std::string& path, int seed_override = -1);
+// The description of the true robot.
+RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobotError& error);
+
+}  // namespace friend_hw_sim

@@ -1,0 +1,17 @@
+// URDF of the FRIEND robot generated from its DH description (no xacro in Debian, and one source
+// of truth): every DH frame is a link named like in the description (arm_link_0..7,
+// head_link_0..2), plus tcp, gripper marker, cameras, force-torque sensor; simple shapes for rviz.
+#pragma once
+
+#include <string>
+
+#include "friend_hw_sim/robot_model.h"
+
+namespace friend_hw_sim {
+
+// Joint i of a chain becomes a revolute joint from link i-1 to an intermediate "<joint>_rotor"
+// link (origin Rz(theta_offset), axis z), then a fixed joint Tz(d) Tx(a) Rx(alpha) to link i, so
+// TF of link i equals the DH frame i exactly.
+std::string generateUrdf(const RobotDescription& description, const std::string& robot_name = "friend");
+
+}  // namespace friend_hw_sim

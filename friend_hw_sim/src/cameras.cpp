@@ -1,0 +1,377 @@
+#include "friend_hw_sim/cameras.h"
+
+#include <cmath>
+
+#include <boost/make_shared.hpp>
+#include <camera_calibration_parsers/parse.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sensor_msgs/Image.h>
+#include <yaml-cpp/yaml.h>
+
+#include "friend_hw_sim/friend_sim.h"
+
+namespace friend_hw_sim {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+namespace render = imagenets::render;
+
+// Random blobs at several scales around `mean` with peak-to-peak about `contrast`: texture that
+// stereo matching can lock onto at any distance.
+cv::Mat blobTexture(int width, int height, double mean, double contrast, cv::RNG& rng) {
+  cv::Mat acc = cv::Mat::zeros(height, width, CV_32F);
+  double weight_sum = 0;
+  for (int scale : {3, 9, 27, 81}) {
+    cv::Mat small(std::max(2, height / scale), std::max(2, width / scale), CV_32F);
+    rng.fill(small, cv::RNG::UNIFORM, -1.0, 1.0);
+    cv::Mat big;
+    cv::resize(small, big, acc.size(), 0, 0, cv::INTER_CUBIC);
+    const double w = 1.0 / std::sqrt(static_cast<double>(scale));
+    acc += big * w;
+    weight_sum += w;
+  }
+  acc /= weight_sum;
+  cv::Mat out;
+  acc.convertTo(out, CV_8U, 255.0 * contrast, 255.0 * mean);
+  return out;
+}
+
+std::vector<double> nums(const YAML::Node& n, const std::string& where, size_t size) {
+  if (!n || !n.IsSequence() || n.size() != size) {
+    throw std::runtime_error(where + ": expected a list of " + std::to_string(size) + " numbers");
+  }
+  std::vector<double> v;
+  for (const auto& e : n) v.push_back(e.as<double>());
+  return v;
+}
+
+Eigen::Isometry3d poseOf(const YAML::Node& n, const std::string& where) {
+  const auto xyz = nums(n["xyz"], where + ".xyz", 3);
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  if (n["rpy_deg"]) {
+    const auto r = nums(n["rpy_deg"], where + ".rpy_deg", 3);
+    rpy = Eigen::Vector3d(r[0], r[1], r[2]) * kDeg;
+  }
+  return fromXyzRpy(Eigen::Vector3d(xyz[0], xyz[1], xyz[2]), rpy);
+}
+
+sensor_msgs::ImagePtr toImage(const cv::Mat& m, const std::string& frame, const ros::Time& stamp) {
+  auto img = boost::make_shared<sensor_msgs::Image>();
+  img->header.stamp = stamp;
+  img->header.frame_id = frame;
+  img->height = m.rows;
+  img->width = m.cols;
+  img->encoding = m.channels() == 3 ? "bgr8" : "mono8";
+  img->step = static_cast<uint32_t>(m.cols * m.elemSize());
+  img->data.resize(img->step * m.rows);
+  for (int y = 0; y < m.rows; ++y) std::memcpy(&img->data[y * img->step], m.ptr(y), img->step);
+  return img;
+}
+
+}  // namespace
+
+WorldScene loadWorldScene(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error("scene file '" + path + "': " + e.what());
+  }
+  WorldScene s;
+  try {
+    cv::RNG rng(root["seed"] ? root["seed"].as<int>() : 7);
+    if (root["light_direction"]) {
+      const auto l = nums(root["light_direction"], path + ": light_direction", 3);
+      s.light_direction = Eigen::Vector3d(l[0], l[1], l[2]);
+    }
+    if (root["ambient"]) s.ambient = root["ambient"].as<double>();
+    if (root["diffuse"]) s.diffuse = root["diffuse"].as<double>();
+    for (size_t i = 0; root["planes"] && i < root["planes"].size(); ++i) {
+      const YAML::Node p = root["planes"][i];
+      const std::string w = path + ": planes[" + std::to_string(i) + "]";
+      WorldPlane wp;
+      wp.name = p["name"] ? p["name"].as<std::string>() : "plane_" + std::to_string(i);
+      wp.pose = poseOf(p, w);
+      const auto size = nums(p["size"], w + ".size", 2);
+      wp.width = size[0];
+      wp.height = size[1];
+      std::vector<double> px{512, 512};
+      if (p["texture_px"]) px = nums(p["texture_px"], w + ".texture_px", 2);
+      wp.texture = blobTexture(static_cast<int>(px[0]), static_cast<int>(px[1]), p["mean"] ? p["mean"].as<double>() : 0.5,
+                               p["contrast"] ? p["contrast"].as<double>() : 0.5, rng);
+      s.planes.push_back(wp);
+    }
+    for (size_t i = 0; root["boxes"] && i < root["boxes"].size(); ++i) {
+      const YAML::Node b = root["boxes"][i];
+      const std::string w = path + ": boxes[" + std::to_string(i) + "]";
+      const std::string name = b["name"] ? b["name"].as<std::string>() : "box_" + std::to_string(i);
+      const auto xyz = nums(b["xyz"], w + ".xyz", 3);
+      const auto size = nums(b["size"], w + ".size", 3);
+      const double yaw = (b["yaw_deg"] ? b["yaw_deg"].as<double>() : 0.0) * kDeg;
+      const double mean = b["mean"] ? b["mean"].as<double>() : 0.5, contrast = b["contrast"] ? b["contrast"].as<double>() : 0.7;
+      const Eigen::Isometry3d centre =
+          fromXyzRpy(Eigen::Vector3d(xyz[0], xyz[1], xyz[2] + size[2] / 2), Eigen::Vector3d(0, 0, yaw));
+      const double hx = size[0] / 2, hy = size[1] / 2, hz = size[2] / 2;
+      // Five faces (the bottom is on the table): offset along the face normal, z out of the box.
+      struct Face { const char* tag; Eigen::Vector3d offset, rpy; double w, h; };
+      const Face faces[] = {
+          {"top", {0, 0, hz}, {0, 0, 0}, size[0], size[1]},
+          {"front", {hx, 0, 0}, {0, M_PI / 2, 0}, size[2], size[1]},
+          {"back", {-hx, 0, 0}, {0, -M_PI / 2, 0}, size[2], size[1]},
+          {"left", {0, hy, 0}, {-M_PI / 2, 0, 0}, size[0], size[2]},
+          {"right", {0, -hy, 0}, {M_PI / 2, 0, 0}, size[0], size[2]},
+      };
+      for (const Face& f : faces) {
+        WorldPlane wp;
+        wp.name = name + "/" + f.tag;
+        wp.pose = centre * fromXyzRpy(f.offset, f.rpy);
+        wp.width = f.w;
+        wp.height = f.h;
+        wp.texture = blobTexture(std::max(8, static_cast<int>(f.w * 1000)), std::max(8, static_cast<int>(f.h * 1000)),
+                                 mean, contrast, rng);
+        s.planes.push_back(wp);
+      }
+    }
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error("scene file '" + path + "': " + e.what());
+  }
+  return s;
+}
+
+cv::Mat defaultMarkerTexture(int pixels) {
+  // 8 x 8 cells: a 2-cell black border, a 4 x 4 white field carrying an asymmetric pattern.
+  const int cells = 8;
+  cv::Mat m(cells, cells, CV_8U, cv::Scalar(0));
+  const int pattern[4][4] = {{1, 1, 1, 1}, {1, 0, 1, 1}, {1, 0, 0, 1}, {1, 1, 1, 1}};
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) m.at<uchar>(y + 2, x + 2) = pattern[y][x] ? 255 : 0;
+  cv::Mat out;
+  cv::resize(m, out, cv::Size(pixels, pixels), 0, 0, cv::INTER_NEAREST);
+  return out;
+}
+
+cv::Mat renderView(const render::Renderer& renderer, const WorldScene& world, const cv::Mat& marker_texture,
+                   double marker_size, const Eigen::Isometry3d& marker_in_base, const Eigen::Isometry3d& camera_in_base,
+                   const render::RenderOptions& options) {
+  const Eigen::Isometry3d base_in_camera = camera_in_base.inverse();
+  render::Scene scene;
+  scene.light.direction = base_in_camera.linear() * world.light_direction;
+  scene.light.ambient = world.ambient;
+  scene.light.diffuse = world.diffuse;
+  for (const auto& wp : world.planes) {
+    render::Plane p;
+    p.texture = wp.texture;
+    p.width = wp.width;
+    p.height = wp.height;
+    p.albedo = wp.albedo;
+    p.pose = base_in_camera * wp.pose;
+    scene.planes.push_back(p);
+  }
+  // The marker, and the white plate it is printed on (1 mm behind, 1.5 x its size).
+  render::Plane marker;
+  marker.texture = marker_texture;
+  marker.width = marker.height = marker_size;
+  marker.pose = base_in_camera * marker_in_base;
+  scene.planes.push_back(marker);
+  static const cv::Mat white(4, 4, CV_8U, cv::Scalar(245));
+  render::Plane plate;
+  plate.texture = white;
+  plate.width = plate.height = marker_size * 1.5;
+  plate.pose = marker.pose * fromXyzRpy(Eigen::Vector3d(0, 0, -0.001), Eigen::Vector3d::Zero());
+  scene.planes.push_back(plate);
+  return renderer.render(scene, options);
+}
+
+CameraSim::Camera CameraSim::makeCamera(ros::NodeHandle nh, const std::string& name, const std::string& info_file,
+                                        const std::string& frame, int supersampling) {
+  Camera c;
+  c.name = name;
+  c.frame = frame;
+  std::string camera_name;
+  if (!camera_calibration_parsers::readCalibration(info_file, camera_name, c.info)) {
+    throw std::runtime_error("camera '" + name + "': cannot read camera_info file '" + info_file + "'");
+  }
+  c.info.header.frame_id = frame;
+  c.renderer = std::make_unique<render::Renderer>(render::CameraModel::fromCameraInfo(c.info), supersampling);
+  c.image = nh.advertise<sensor_msgs::Image>(name + "/image_raw", 2);
+  c.camera_info = nh.advertise<sensor_msgs::CameraInfo>(name + "/camera_info", 2);
+  return c;
+}
+
+CameraSim::CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& sim)
+    : nh_(nh), pnh_(pnh), sim_(sim), rng_(static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + 101) {
+  const std::string desc = defaultRobotDescriptionPath();
+  const std::string config = desc.substr(0, desc.size() - std::string("friend/robot.yaml").size());
+  world_ = loadWorldScene(pnh_.param<std::string>("scene", config + "friend/scene.yaml"));
+  const std::string marker_file = pnh_.param<std::string>("marker_texture", "");
+  if (marker_file.empty()) {
+    marker_texture_ = defaultMarkerTexture();
+  } else {
+    marker_texture_ = cv::imread(marker_file, cv::IMREAD_GRAYSCALE);
+    if (marker_texture_.empty()) throw std::runtime_error("parameter ~marker_texture: cannot read '" + marker_file + "'");
+  }
+  const int ss = pnh_.param("camera/supersampling", 2);
+  const auto& d = sim_.nominal().description();
+  left_ = makeCamera(nh_, "stereo/left", d.left_camera_info, d.left_camera.frame, ss);
+  right_ = makeCamera(nh_, "stereo/right", d.right_camera_info, d.right_camera_frame, ss);
+  hand_ = makeCamera(nh_, "hand_camera", config + "cameras/friend_hand_camera.yaml", d.hand_camera.frame, ss);
+  trigger_stereo_ = nh_.advertiseService("stereo/trigger", &CameraSim::triggerStereo, this);
+  trigger_hand_ = nh_.advertiseService("hand_camera/trigger", &CameraSim::triggerHand, this);
+  thread_ = std::thread([this] { loop(); });
+}
+
+CameraSim::~CameraSim() {
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+}
+
+render::RenderOptions CameraSim::options(std::uint64_t seed) {
+  render::RenderOptions o;
+  pnh_.getParamCached("camera/illumination", o.illumination);
+  o.noise_sigma = 1.5;
+  o.blur_sigma = 0.6;
+  pnh_.getParamCached("camera/noise", o.noise_sigma);
+  pnh_.getParamCached("camera/blur", o.blur_sigma);
+  pnh_.getParamCached("camera/color", o.color);
+  o.background = 0.5;
+  o.seed = seed;
+  return o;
+}
+
+bool CameraSim::applyFaults(cv::Mat& image, const Camera& cam, const Eigen::Isometry3d& camera_in_base,
+                            const Eigen::Isometry3d& marker_in_base) {
+  double p_drop = 0, p_corrupt = 0, p_reflection = 0;
+  pnh_.getParamCached("faults/drop_frame_probability", p_drop);
+  pnh_.getParamCached("faults/corrupt_frame_probability", p_corrupt);
+  pnh_.getParamCached("faults/reflection_probability", p_reflection);
+  std::lock_guard<std::mutex> lock(rng_mutex_);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  if (u(rng_) < p_drop) return false;
+  if (u(rng_) < p_reflection) {
+    // A specular highlight near the marker, as from a lamp on the gripper's metal: a saturated
+    // Gaussian spot of about a third of the marker's size, centred within one marker side of it.
+    const Eigen::Vector3d c = (camera_in_base.inverse() * marker_in_base).translation();
+    if (c.z() > 0.05) {
+      const cv::Point2d px = cam.renderer->camera().project(c);
+      const double side = cam.info.K[0] * 0.06 / c.z();
+      const cv::Point2d centre(px.x + (u(rng_) - 0.5) * side, px.y + (u(rng_) - 0.5) * side);
+      const double sigma = side * (0.12 + 0.15 * u(rng_));
+      const double amplitude = 200 + 100 * u(rng_);
+      const int r = static_cast<int>(3 * sigma) + 1;
+      const cv::Rect roi = cv::Rect(static_cast<int>(centre.x) - r, static_cast<int>(centre.y) - r, 2 * r + 1, 2 * r + 1) &
+                           cv::Rect(0, 0, image.cols, image.rows);
+      for (int y = roi.y; y < roi.y + roi.height; ++y) {
+        uchar* row = image.ptr<uchar>(y);
+        for (int x = roi.x; x < roi.x + roi.width; ++x) {
+          const double d2 = (x - centre.x) * (x - centre.x) + (y - centre.y) * (y - centre.y);
+          const double add = amplitude * std::exp(-d2 / (2 * sigma * sigma));
+          for (int ch = 0; ch < image.channels(); ++ch) {
+            uchar& v = row[x * image.channels() + ch];
+            v = cv::saturate_cast<uchar>(v + add);
+          }
+        }
+      }
+    }
+  }
+  if (u(rng_) < p_corrupt) {
+    // A transmission error: a band of rows shifted sideways and sprinkled with noise.
+    const int h = static_cast<int>(image.rows * (0.1 + 0.2 * u(rng_)));
+    const int y0 = static_cast<int>((image.rows - h) * u(rng_));
+    const int shift = static_cast<int>(image.cols * (0.05 + 0.3 * u(rng_)));
+    cv::Mat band = image.rowRange(y0, y0 + h);
+    cv::Mat shifted;
+    cv::hconcat(band.colRange(image.cols - shift, image.cols), band.colRange(0, image.cols - shift), shifted);
+    cv::Mat noise(shifted.size(), shifted.type());
+    cv::randu(noise, 0, 80);
+    shifted += noise;
+    shifted.copyTo(band);
+  }
+  return true;
+}
+
+void CameraSim::publish(Camera& cam, const cv::Mat& image, const ros::Time& stamp) {
+  auto info = boost::make_shared<sensor_msgs::CameraInfo>(cam.info);
+  info->header.stamp = stamp;
+  cam.image.publish(toImage(image, cam.frame, stamp));
+  cam.camera_info.publish(info);
+}
+
+void CameraSim::publishStereo() {
+  std::lock_guard<std::mutex> lock(render_mutex_);
+  const RobotState s = sim_.state();
+  const RobotModel& truth = sim_.truth();
+  const Eigen::Isometry3d marker = truth.marker(s.arm);
+  const Eigen::Isometry3d left_pose = truth.leftCamera(s.head), right_pose = truth.rightCamera(s.head);
+  const std::uint64_t seed = ++frame_ * 2;
+  cv::Mat left, right;
+  // The two views render in parallel (the renderer also splits rows across threads).
+  std::thread right_thread([&] {
+    right = renderView(*right_.renderer, world_, marker_texture_, truth.description().marker_size, marker, right_pose,
+                       options(seed + 1));
+  });
+  left = renderView(*left_.renderer, world_, marker_texture_, truth.description().marker_size, marker, left_pose,
+                    options(seed));
+  right_thread.join();
+  if (applyFaults(left, left_, left_pose, marker)) publish(left_, left, s.stamp);
+  if (applyFaults(right, right_, right_pose, marker)) publish(right_, right, s.stamp);
+}
+
+void CameraSim::publishHand() {
+  std::lock_guard<std::mutex> lock(render_mutex_);
+  const RobotState s = sim_.state();
+  const RobotModel& truth = sim_.truth();
+  const Eigen::Isometry3d marker = truth.marker(s.arm), cam = truth.handCamera(s.arm);
+  cv::Mat image = renderView(*hand_.renderer, world_, marker_texture_, truth.description().marker_size, marker, cam,
+                             options(++frame_ * 2));
+  if (applyFaults(image, hand_, cam, marker)) publish(hand_, image, s.stamp);
+}
+
+bool CameraSim::triggerStereo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  try {
+    publishStereo();
+    res.success = true;
+    res.message = "stereo pair published";
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = std::string("stereo camera: ") + e.what();
+  }
+  return true;
+}
+
+bool CameraSim::triggerHand(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  try {
+    publishHand();
+    res.success = true;
+    res.message = "hand camera image published";
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = std::string("hand camera: ") + e.what();
+  }
+  return true;
+}
+
+void CameraSim::loop() {
+  ros::Time next_stereo = ros::Time::now(), next_hand = ros::Time::now();
+  while (running_ && ros::ok()) {
+    double stereo_rate = 5.0, hand_rate = 2.0;
+    pnh_.getParamCached("camera/rate", stereo_rate);
+    pnh_.getParamCached("hand_camera/rate", hand_rate);
+    const ros::Time now = ros::Time::now();
+    try {
+      if (stereo_rate > 0 && now >= next_stereo) {
+        next_stereo = now + ros::Duration(1.0 / stereo_rate);
+        if (left_.image.getNumSubscribers() + right_.image.getNumSubscribers() > 0) publishStereo();
+      }
+      if (hand_rate > 0 && now >= next_hand) {
+        next_hand = now + ros::Duration(1.0 / hand_rate);
+        if (hand_.image.getNumSubscribers() > 0) publishHand();
+      }
+    } catch (const std::exception& e) {
+      ROS_ERROR_THROTTLE(5, "friend_sim cameras: %s", e.what());
+    }
+    ros::WallDuration(0.005).sleep();
+  }
+}
+
+}  // namespace friend_hw_sim

@@ -1,0 +1,197 @@
+#include "friend_hw_sim/friend_sim.h"
+
+#include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <sensor_msgs/JointState.h>
+
+#include "friend_hw_sim/cameras.h"
+
+namespace friend_hw_sim {
+namespace {
+
+geometry_msgs::TransformStamped toMsg(const Eigen::Isometry3d& t, const ros::Time& stamp, const std::string& parent,
+                                      const std::string& child) {
+  geometry_msgs::TransformStamped m;
+  m.header.stamp = stamp;
+  m.header.frame_id = parent;
+  m.child_frame_id = child;
+  m.transform.translation.x = t.translation().x();
+  m.transform.translation.y = t.translation().y();
+  m.transform.translation.z = t.translation().z();
+  const Eigen::Quaterniond q(t.linear());
+  m.transform.rotation.x = q.x();
+  m.transform.rotation.y = q.y();
+  m.transform.rotation.z = q.z();
+  m.transform.rotation.w = q.w();
+  return m;
+}
+
+std::string packagePath(const std::string& rel) {
+  const std::string desc = defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
+  return desc.substr(0, desc.size() - std::string("config/friend/robot.yaml").size()) + rel;
+}
+
+}  // namespace
+
+FriendSim::FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : nh_(nh),
+      pnh_(pnh),
+      nominal_(loadRobotDescription(pnh.param<std::string>("description", defaultRobotDescriptionPath()))),
+      truth_(applyTrueError(nominal_.description(),
+                            loadTrueError(pnh.param<std::string>("true_error", packagePath("config/friend/true_error.yaml")),
+                                          pnh.param<int>("seed", -1)))),
+      rng_(static_cast<unsigned>(pnh.param<int>("noise_seed", 1))) {
+  time_scale_ = pnh_.param("time_scale", 1.0);
+  if (!(time_scale_ > 0)) throw std::runtime_error("parameter ~time_scale must be positive");
+  const auto& d = nominal_.description();
+  arm_ = std::make_unique<JointGroupServer>(nh_, "arm/move_joints", d.arm, d.arm_home, pnh_.resolveName("faults/arm_abort_probability"),
+                                            static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + 11);
+  head_ = std::make_unique<JointGroupServer>(nh_, "head/move_joints", d.head, d.head_home,
+                                             pnh_.resolveName("faults/head_abort_probability"),
+                                             static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + 23);
+  joint_states_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
+  truth_joint_states_ = pnh_.advertise<sensor_msgs::JointState>("ground_truth/joint_states", 10);
+  wrench_ = nh_.advertise<geometry_msgs::WrenchStamped>("ft_sensor/wrench", 10);
+  for (const char* f : {"tcp", "marker", "left_camera", "right_camera", "head_base", "hand_camera"}) {
+    truth_frames_[f] = pnh_.advertise<geometry_msgs::TransformStamped>(std::string("ground_truth/") + f, 10);
+  }
+  set_object_ = nh_.advertiseService("world_model/set", &FriendSim::setObject, this);
+  get_object_ = nh_.advertiseService("world_model/get", &FriendSim::getObject, this);
+  cameras_ = std::make_unique<CameraSim>(nh_, pnh_, *this);
+  const double rate = pnh_.param("joint_state_rate", 50.0);
+  last_tick_ = ros::Time::now();
+  timer_ = nh_.createTimer(ros::Duration(1.0 / rate), &FriendSim::tick, this);
+  ROS_INFO("friend_sim: %s, time_scale %.2f; true head mount differs from nominal by %.1f mm",
+           d.source.c_str(), time_scale_,
+           (truth_.headBase().translation() - nominal_.headBase().translation()).norm() * 1000);
+}
+
+FriendSim::~FriendSim() { timer_.stop(); }
+
+RobotState FriendSim::state() const {
+  RobotState s;
+  s.stamp = ros::Time::now();
+  s.arm = arm_->positions();
+  s.head = head_->positions();
+  s.arm_moving = arm_->moving();
+  s.head_moving = head_->moving();
+  return s;
+}
+
+void FriendSim::tick(const ros::TimerEvent&) {
+  const ros::Time now = ros::Time::now();
+  const double dt = std::max(0.0, (now - last_tick_).toSec()) * time_scale_;
+  last_tick_ = now;
+  arm_->step(dt);
+  head_->step(dt);
+  RobotState s = state();
+  s.stamp = now;
+
+  sensor_msgs::JointState js;
+  js.header.stamp = now;
+  js.name = arm_->names();
+  for (const auto& n : head_->names()) js.name.push_back(n);
+  js.position = s.arm;
+  js.position.insert(js.position.end(), s.head.begin(), s.head.end());
+  js.velocity = arm_->velocities();
+  const auto hv = head_->velocities();
+  js.velocity.insert(js.velocity.end(), hv.begin(), hv.end());
+  for (double& v : js.velocity) v *= time_scale_;  // per second of simulated time -> per second of the clock
+  truth_joint_states_.publish(js);
+  double noise = 0;
+  pnh_.getParamCached("encoder_noise", noise);
+  if (noise > 0) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::normal_distribution<double> g(0.0, noise);
+    for (double& p : js.position) p += g(rng_);
+  }
+  joint_states_.publish(js);
+  publishGroundTruth(s);
+  publishWrench(s);
+}
+
+void FriendSim::publishGroundTruth(const RobotState& s) {
+  const auto& d = truth_.description();
+  const std::string& base = d.base_frame;
+  auto pub = [&](const char* key, const Eigen::Isometry3d& t, const std::string& child) {
+    auto& p = truth_frames_[key];
+    if (p.getNumSubscribers() > 0) p.publish(toMsg(t, s.stamp, base, child));
+  };
+  pub("tcp", truth_.tcp(s.arm), d.tool.frame);
+  pub("marker", truth_.marker(s.arm), d.marker.frame);
+  pub("hand_camera", truth_.handCamera(s.arm), d.hand_camera.frame);
+  pub("left_camera", truth_.leftCamera(s.head), d.left_camera.frame);
+  pub("right_camera", truth_.rightCamera(s.head), d.right_camera_frame);
+  pub("head_base", truth_.headBase(), d.head.link_prefix + "0");
+}
+
+void FriendSim::publishWrench(const RobotState& s) {
+  // Gravity of the payload hanging on the sensor, expressed in the (true) sensor frame.
+  double mass = 0.8, fn = 0.05, tn = 0.005;
+  std::vector<double> com{0.0, 0.0, 0.09};
+  pnh_.getParamCached("ft_sensor/payload_mass", mass);
+  pnh_.getParamCached("ft_sensor/force_noise", fn);
+  pnh_.getParamCached("ft_sensor/torque_noise", tn);
+  pnh_.getParamCached("ft_sensor/payload_com", com);
+  if (com.size() != 3) com = {0.0, 0.0, 0.09};
+  const Eigen::Isometry3d sensor = truth_.ftSensor(s.arm);
+  const Eigen::Vector3d f = sensor.linear().transpose() * Eigen::Vector3d(0, 0, -9.81 * mass);
+  const Eigen::Vector3d tau = Eigen::Vector3d(com[0], com[1], com[2]).cross(f);
+  geometry_msgs::WrenchStamped w;
+  w.header.stamp = s.stamp;
+  w.header.frame_id = nominal_.description().ft_sensor.frame;
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::normal_distribution<double> g(0.0, 1.0);
+  w.wrench.force.x = f.x() + fn * g(rng_);
+  w.wrench.force.y = f.y() + fn * g(rng_);
+  w.wrench.force.z = f.z() + fn * g(rng_);
+  w.wrench.torque.x = tau.x() + tn * g(rng_);
+  w.wrench.torque.y = tau.y() + tn * g(rng_);
+  w.wrench.torque.z = tau.z() + tn * g(rng_);
+  wrench_.publish(w);
+}
+
+bool FriendSim::setObject(imagenets::WorldModelSet::Request& req, imagenets::WorldModelSet::Response& res) {
+  if (req.name.empty()) {
+    res.success = false;
+    res.message = "world_model/set: the object name is empty";
+    return true;
+  }
+  const auto& q = req.pose.pose.orientation;
+  const double n = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  if (std::abs(n - 1.0) > 1e-3) {
+    res.success = false;
+    res.message = "world_model/set: object '" + req.name + "' has a non-unit orientation quaternion (norm " +
+                  std::to_string(n) + ")";
+    return true;
+  }
+  if (req.pose.header.frame_id.empty()) req.pose.header.frame_id = nominal_.description().base_frame;
+  std::lock_guard<std::mutex> lock(mutex_);
+  const bool replaced = world_.count(req.name) > 0;
+  world_[req.name] = req;
+  res.success = true;
+  res.message = (replaced ? "replaced '" : "stored '") + req.name + "'";
+  return true;
+}
+
+bool FriendSim::getObject(imagenets::WorldModelGet::Request& req, imagenets::WorldModelGet::Response& res) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const auto& kv : world_) res.names.push_back(kv.first);
+  if (req.name.empty()) {
+    res.found = false;
+    res.message = std::to_string(world_.size()) + " objects";
+    return true;
+  }
+  const auto it = world_.find(req.name);
+  res.found = it != world_.end();
+  if (res.found) {
+    res.pose = it->second.pose;
+    res.description = it->second.description;
+    res.message = "found '" + req.name + "'";
+  } else {
+    res.message = "world model has no object '" + req.name + "'";
+  }
+  return true;
+}
+
+}  // namespace friend_hw_sim

@@ -1,0 +1,40 @@
+// friend_urdf: prints the URDF of the FRIEND robot generated from its DH description, for the
+// robot_description parameter (launch: <param name="robot_description" command="rosrun imagenets
+// friend_urdf --true-error ..."/>).
+//   friend_urdf [--description robot.yaml] [--true-error true_error.yaml] [--seed N] [--name NAME]
+#include <iostream>
+#include <string>
+
+#include "friend_hw_sim/robot_model.h"
+#include "friend_hw_sim/urdf_generator.h"
+
+int main(int argc, char** argv) {
+  std::string description = friend_hw_sim::defaultRobotDescriptionPath(), error_file, name = "friend";
+  int seed = -1;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= argc) throw std::runtime_error("option " + a + " expects a value");
+        return argv[++i];
+      };
+      if (a == "--description") description = value();
+      else if (a == "--true-error") error_file = value();
+      else if (a == "--seed") seed = std::stoi(value());
+      else if (a == "--name") name = value();
+      else if (a == "-h" || a == "--help") {
+        std::cout << "usage: friend_urdf [--description robot.yaml] [--true-error true_error.yaml] [--seed N] [--name NAME]\n"
+                     "Prints the URDF of the nominal robot, or of the simulator's true robot with --true-error.\n";
+        return 0;
+      } else if (a.rfind("__", 0) == 0) continue;  // roslaunch remapping arguments
+      else throw std::runtime_error("unknown argument '" + a + "' (see --help)");
+    }
+    auto robot = friend_hw_sim::loadRobotDescription(description);
+    if (!error_file.empty()) robot = friend_hw_sim::applyTrueError(robot, friend_hw_sim::loadTrueError(error_file, seed));
+    std::cout << friend_hw_sim::generateUrdf(robot, name);
+  } catch (const std::exception& e) {
+    std::cerr << "friend_urdf: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,163 @@
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "friend_hw_sim/joint_trajectory.h"
+#include "friend_hw_sim/robot_model.h"
+
+using namespace friend_hw_sim;
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+
+double angleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return Eigen::AngleAxisd(a.transpose() * b).angle();
+}
+
+std::string writeTemp(const std::string& text) {
+  char name[] = "/tmp/friend_desc_XXXXXX";
+  const int fd = mkstemp(name);
+  close(fd);
+  std::ofstream(name) << text;
+  return name;
+}
+}  // namespace
+
+TEST(RobotModel, LoadsTheShippedDescription) {
+  const auto d = loadRobotDescription("config/friend/robot.yaml");
+  EXPECT_EQ(d.arm.joints.size(), 7u);
+  EXPECT_EQ(d.head.joints.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.marker_size, 0.06);
+  EXPECT_NEAR(d.stereo_baseline, 0.12, 1e-12);
+  EXPECT_EQ(d.arm.joints[0].name, "arm_joint_1");
+  EXPECT_NEAR(d.arm.joints[0].alpha, -M_PI / 2, 1e-12);
+  EXPECT_NE(d.left_camera_info.find("config/cameras/friend_stereo_left.yaml"), std::string::npos);
+}
+
+TEST(RobotModel, DhTransformFollowsTheClassicConvention) {
+  DhJoint j;
+  j.a = 0.2;
+  j.d = 0.1;
+  j.alpha = M_PI / 2;
+  j.theta_offset = 0.1;
+  const Eigen::Isometry3d t = dhTransform(j, 0.3);
+  const double th = 0.4;
+  Eigen::Matrix4d expected;
+  expected << std::cos(th), -std::sin(th) * std::cos(j.alpha), std::sin(th) * std::sin(j.alpha), j.a * std::cos(th),
+      std::sin(th), std::cos(th) * std::cos(j.alpha), -std::cos(th) * std::sin(j.alpha), j.a * std::sin(th), 0,
+      std::sin(j.alpha), std::cos(j.alpha), j.d, 0, 0, 0, 1;
+  EXPECT_TRUE(t.matrix().isApprox(expected, 1e-12)) << t.matrix() << "\n" << expected;
+}
+
+TEST(RobotModel, RpyRoundTripIncludingGimbalLock) {
+  for (const Eigen::Vector3d rpy : {Eigen::Vector3d(0.1, -0.4, 2.0), Eigen::Vector3d(0, M_PI / 2, 0),
+                                    Eigen::Vector3d(0.3, -M_PI / 2, 0.2), Eigen::Vector3d(-3.0, 0.01, -1.0)}) {
+    const Eigen::Matrix3d r = fromXyzRpy(Eigen::Vector3d::Zero(), rpy).linear();
+    const Eigen::Matrix3d back = fromXyzRpy(Eigen::Vector3d::Zero(), rpyOf(r)).linear();
+    EXPECT_LT(angleBetween(r, back), 1e-9) << rpy.transpose();
+  }
+}
+
+TEST(RobotModel, LimitViolationNamesTheJoint) {
+  const auto d = loadRobotDescription("config/friend/robot.yaml");
+  std::vector<double> q(7, 0.0);
+  EXPECT_EQ(d.arm.limitViolation(q), "");
+  q[3] = 2.5;  // joint 4 is limited to +-115 deg
+  const std::string why = d.arm.limitViolation(q);
+  EXPECT_NE(why.find("arm_joint_4"), std::string::npos) << why;
+  EXPECT_NE(why.find("115"), std::string::npos) << why;
+  EXPECT_NE(d.arm.limitViolation({0, 0}).find("expected 7"), std::string::npos);
+}
+
+TEST(RobotModel, BadDescriptionsAreReportedWithFileAndKey) {
+  EXPECT_THROW(loadRobotDescription("/nonexistent/robot.yaml"), std::runtime_error);
+  const std::string path = writeTemp("arm:\n  mount: {xyz: [0, 0, 0]}\n  joints:\n    - {name: j1, a: 0, d: 1}\n");
+  try {
+    loadRobotDescription(path);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find("alpha_deg"), std::string::npos) << what;
+  }
+  std::remove(path.c_str());
+}
+
+TEST(RobotModel, DefaultTrueErrorIsAboutFifteenMillimetresAndTwoDegrees) {
+  const auto nominal = loadRobotDescription("config/friend/robot.yaml");
+  const auto truth = applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml"));
+  const double dt = (truth.head.mount.translation() - nominal.head.mount.translation()).norm();
+  const double dr = angleBetween(truth.head.mount.linear(), nominal.head.mount.linear());
+  EXPECT_NEAR(dt, 0.015, 0.001);
+  EXPECT_NEAR(dr, 2.0 * kDeg, 0.1 * kDeg);
+  // The arm's marker moves by millimetres, not centimetres.
+  const RobotModel n(nominal), t(truth);
+  const double dm = (n.marker(nominal.arm_calibration_pose).translation() - t.marker(nominal.arm_calibration_pose).translation()).norm();
+  EXPECT_GT(dm, 1e-4);
+  EXPECT_LT(dm, 0.01);
+}
+
+TEST(RobotModel, SeededErrorsAreRepeatableAndOfTheGivenSize) {
+  const auto a = loadTrueError("config/friend/true_error.yaml", 5);
+  const auto b = loadTrueError("config/friend/true_error.yaml", 5);
+  const auto c = loadTrueError("config/friend/true_error.yaml", 6);
+  EXPECT_TRUE(a.head_mount_xyz.isApprox(b.head_mount_xyz));
+  EXPECT_FALSE(a.head_mount_xyz.isApprox(c.head_mount_xyz));
+  EXPECT_NEAR(a.head_mount_xyz.norm(), 0.015, 1e-12);
+  EXPECT_NEAR(a.head_mount_rpy.norm(), 2.0 * kDeg, 1e-12);
+  ASSERT_EQ(a.arm_joint_offsets.size(), 7u);
+  for (double o : a.arm_joint_offsets) EXPECT_LE(std::abs(o), 0.1 * kDeg);
+}
+
+TEST(RobotModel, LookAtCentresTheTargetBetweenTheStereoCameras) {
+  const RobotModel m(loadRobotDescription("config/friend/robot.yaml"));
+  const Eigen::Vector3d target = m.tcp(m.description().arm_calibration_pose).translation();
+  const auto pt = m.lookAt(target);
+  Eigen::Isometry3d centre = m.leftCamera({pt[0], pt[1]});
+  centre.translate(Eigen::Vector3d(m.description().stereo_baseline / 2, 0, 0));
+  const Eigen::Vector3d p = centre.inverse() * target;
+  EXPECT_GT(p.z(), 0.3);
+  EXPECT_LT(std::hypot(p.x(), p.y()) / p.z(), 1e-6) << p.transpose();
+}
+
+TEST(RobotModel, CalibrationPoseShowsTheMarkerToBothCameras) {
+  const RobotModel m(loadRobotDescription("config/friend/robot.yaml"));
+  const auto& d = m.description();
+  const Eigen::Isometry3d marker = m.marker(d.arm_calibration_pose);
+  for (const Eigen::Isometry3d& cam : {m.leftCamera(d.head_calibration_pose), m.rightCamera(d.head_calibration_pose)}) {
+    const Eigen::Isometry3d in_cam = cam.inverse() * marker;
+    const Eigen::Vector3d c = in_cam.translation();
+    ASSERT_GT(c.z(), 0.3);
+    EXPECT_LT(c.z(), 1.2);
+    // Roughly inside a 1400 px focal length image of 1024 x 768 (with margin).
+    EXPECT_LT(std::abs(1400 * c.x() / c.z()), 400) << c.transpose();
+    EXPECT_LT(std::abs(1400 * c.y() / c.z()), 300) << c.transpose();
+    // The printed face points towards the camera, not more than 50 degrees off.
+    const Eigen::Vector3d normal = in_cam.linear().col(2);
+    const double cosang = normal.dot(-c.normalized());
+    EXPECT_GT(cosang, std::cos(50 * kDeg)) << "marker normal " << normal.transpose();
+  }
+}
+
+TEST(JointTrajectory, RespectsVelocityLimitsAndEndsAtTheGoal) {
+  const std::vector<double> start{0.0, 1.0}, goal{1.0, 0.5}, vmax{0.5, 2.0};
+  const JointTrajectory t(start, goal, vmax, 0.5);
+  EXPECT_NEAR(t.duration(), JointTrajectory::kPeakToMean * 1.0 / 0.25, 1e-12);
+  double peak = 0;
+  std::vector<double> prev = t.positionAt(0);
+  const double dt = t.duration() / 2000;
+  for (int i = 1; i <= 2000; ++i) {
+    const auto q = t.positionAt(i * dt);
+    peak = std::max(peak, std::abs(q[0] - prev[0]) / dt);
+    prev = q;
+  }
+  EXPECT_LE(peak, 0.25 + 1e-6);
+  EXPECT_GT(peak, 0.24);
+  EXPECT_EQ(t.positionAt(t.duration() + 1), goal);
+  EXPECT_EQ(t.positionAt(0), start);
+  EXPECT_THROW(JointTrajectory(start, goal, vmax, 0.0), std::invalid_argument);
+}

@@ -1,0 +1,90 @@
+#include "ros_access.h"
+
+#include <map>
+#include <mutex>
+
+#include <actionlib/client/simple_action_client.h>
+
+#include "friend_hw_sim/robot_model.h"
+#include "imagenets/MoveJointsAction.h"
+
+namespace imagenets {
+namespace blocks {
+namespace hardware {
+
+void ensureRosNode() {
+  static std::mutex mutex;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (!ros::isInitialized()) {
+    int argc = 0;
+    ros::init(argc, nullptr, "imagenets_hardware", ros::init_options::AnonymousName | ros::init_options::NoSigintHandler);
+  }
+  if (!ros::master::check()) {
+    throw BlockError("no ROS master at " + ros::master::getURI() + " (start the robot or `roslaunch imagenets friend_sim.launch`)");
+  }
+  if (!ros::isStarted()) ros::start();
+}
+
+sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_msgs::JointState& target,
+                                      double speed_scale, double server_timeout, double motion_timeout) {
+  ensureRosNode();
+  actionlib::SimpleActionClient<imagenets::MoveJointsAction> client(action, true);
+  if (!client.waitForServer(ros::Duration(server_timeout))) {
+    throw BlockError("action server '" + ros::names::resolve(action) + "' not available after " +
+                     std::to_string(server_timeout) + " s (property server_timeout)");
+  }
+  imagenets::MoveJointsGoal goal;
+  goal.joint_names = target.name;
+  goal.positions = target.position;
+  goal.speed_scale = speed_scale;
+  client.sendGoal(goal);
+  if (!client.waitForResult(ros::Duration(motion_timeout))) {
+    client.cancelGoal();
+    throw BlockError("'" + ros::names::resolve(action) + "' did not finish within " + std::to_string(motion_timeout) +
+                     " s (property motion_timeout); goal canceled");
+  }
+  const auto state = client.getState();
+  if (state != actionlib::SimpleClientGoalState::SUCCEEDED) {
+    throw BlockError("'" + ros::names::resolve(action) + "' " + state.toString() + ": " + state.getText());
+  }
+  auto reached = boost::make_shared<sensor_msgs::JointState>();
+  reached->header.stamp = ros::Time::now();
+  reached->name = client.getResult()->joint_names;
+  reached->position = client.getResult()->positions;
+  return reached;
+}
+
+const friend_hw_sim::RobotDescription& robotDescription(const std::string& path) {
+  static std::mutex mutex;
+  static std::map<std::string, friend_hw_sim::RobotDescription> cache;
+  const std::string file = path.empty() ? friend_hw_sim::defaultRobotDescriptionPath() : path;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto it = cache.find(file);
+  if (it == cache.end()) {
+    try {
+      it = cache.emplace(file, friend_hw_sim::loadRobotDescription(file)).first;
+    } catch (const std::exception& e) {
+      throw BlockError(std::string("property 'description': ") + e.what());
+    }
+  }
+  return it->second;
+}
+
+std::vector<double> positionsOf(const sensor_msgs::JointState& state, const std::vector<std::string>& names,
+                                const std::string& port) {
+  if (state.name.size() != state.position.size()) {
+    throw BlockError("input '" + port + "': " + std::to_string(state.name.size()) + " names but " +
+                     std::to_string(state.position.size()) + " positions");
+  }
+  std::vector<double> q;
+  for (const auto& n : names) {
+    const auto it = std::find(state.name.begin(), state.name.end(), n);
+    if (it == state.name.end()) throw BlockError("input '" + port + "': joint '" + n + "' is missing");
+    q.push_back(state.position[it - state.name.begin()]);
+  }
+  return q;
+}
+
+}  // namespace hardware
+}  // namespace blocks
+}  // namespace imagenets

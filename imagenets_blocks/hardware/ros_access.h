@@ -1,0 +1,45 @@
+// Shared plumbing of the hardware blocks: they reach the robot (or the simulator) through ROS
+// like any driver client. A block may run inside a node (nodelet host: ROS is up) or inside the
+// command line tool (no node yet): ensureRosNode() starts an anonymous node on first use and
+// reports a missing master clearly. Every wait has a timeout and names what it waited for.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+
+namespace friend_hw_sim {
+struct RobotDescription;
+}
+
+namespace imagenets {
+namespace blocks {
+namespace hardware {
+
+// Starts a ROS node for this process if none runs yet; throws BlockError when no master answers.
+void ensureRosNode();
+
+// Waits for the next message on `topic` that arrives after the call (or satisfies `accept`).
+template <class M>
+boost::shared_ptr<const M> waitForMessage(const std::string& topic, double timeout,
+                                          std::function<bool(const M&)> accept = nullptr);
+
+// Sends an imagenets/MoveJoints goal and waits for the result; returns the reached positions.
+// Throws BlockError naming the action when the server is missing, rejects, aborts or times out.
+sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_msgs::JointState& target,
+                                      double speed_scale, double server_timeout, double motion_timeout);
+
+// The robot description named by a block's `description` property ("" = the shipped one).
+const friend_hw_sim::RobotDescription& robotDescription(const std::string& path);
+
+// Positions of `names` in `state` (throws BlockError naming the missing joint and the port).
+std::vector<double> positionsOf(const sensor_msgs::JointState& state, const std::vector<std::string>& names,
+                                const std::string& port);
+
+}  // namespace hardware
+}  // namespace blocks
+}  // namespace imagenets
+
+#include "ros_access_impl.h"

@@ -1,0 +1,18 @@
+// Conversions between the marker detector's results and ROS messages.
+#pragma once
+
+#include <geometry_msgs/Pose.h>
+#include <imagenets/MarkerDetection.h>
+
+#include "imagenets/blocks/marker.h"
+
+namespace imagenets {
+namespace marker {
+
+geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& pose);
+Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& pose);
+// The detection as a message (threshold NaN: the detector does not know it).
+imagenets::MarkerDetectionPtr toMsg(const Detection& d, const std::string& marker_name, const std_msgs::Header& header);
+
+}  // namespace marker
+}  // namespace imagenets

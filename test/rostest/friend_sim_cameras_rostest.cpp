@@ -1,0 +1,234 @@
+// rostest: the simulator's cameras show the gripper marker where the TRUE geometry projects it
+// (sub-pixel), stereo pairs carry identical stamps with camera_info beside them, ground truth
+// agrees with the TF tree of the true robot, and camera faults do what they say.
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+
+#include <actionlib/client/simple_action_client.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "friend_hw_sim/robot_model.h"
+#include "imagenets/MoveJointsAction.h"
+
+namespace {
+
+using Client = actionlib::SimpleActionClient<imagenets::MoveJointsAction>;
+
+template <class M>
+class Latest {
+ public:
+  explicit Latest(const std::string& topic) { sub_ = nh_.subscribe(topic, 5, &Latest::cb, this); }
+  boost::shared_ptr<const M> get() {
+    std::lock_guard<std::mutex> lock(m_);
+    return last_;
+  }
+  void clear() {
+    std::lock_guard<std::mutex> lock(m_);
+    last_.reset();
+  }
+  // Waits for a message newer than `after`.
+  boost::shared_ptr<const M> waitNewer(const ros::Time& after, double timeout) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::WallTime::now() < end) {
+      auto m = get();
+      if (m && m->header.stamp > after) return m;
+      ros::WallDuration(0.01).sleep();
+    }
+    return nullptr;
+  }
+
+ private:
+  void cb(const boost::shared_ptr<const M>& m) {
+    std::lock_guard<std::mutex> lock(m_);
+    last_ = m;
+  }
+  ros::NodeHandle nh_;
+  ros::Subscriber sub_;
+  std::mutex m_;
+  boost::shared_ptr<const M> last_;
+};
+
+Eigen::Isometry3d toEigen(const geometry_msgs::TransformStamped& t) { return tf2::transformToEigen(t); }
+
+cv::Mat toMat(const sensor_msgs::Image& img) {
+  EXPECT_EQ(img.encoding, "mono8");
+  return cv::Mat(img.height, img.width, CV_8U, const_cast<uint8_t*>(img.data.data()), img.step).clone();
+}
+
+// The outer corners of the dark marker square: the largest dark quadrilateral near `hint`,
+// corners refined to sub-pixel accuracy.
+std::vector<cv::Point2f> detectMarkerCorners(const cv::Mat& gray, const cv::Point2d& hint, double side_px) {
+  const int r = static_cast<int>(side_px * 1.6);
+  const cv::Rect roi = cv::Rect(static_cast<int>(hint.x) - r, static_cast<int>(hint.y) - r, 2 * r, 2 * r) &
+                       cv::Rect(0, 0, gray.cols, gray.rows);
+  cv::Mat bin;
+  cv::threshold(gray(roi), bin, 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(bin, contours, cv::RETR_LIST, cv::CHAIN_APPROX_SIMPLE);
+  std::vector<cv::Point2f> best;
+  double best_area = 0;
+  for (const auto& c : contours) {
+    std::vector<cv::Point> quad;
+    cv::approxPolyDP(c, quad, 0.05 * cv::arcLength(c, true), true);
+    const double area = std::abs(cv::contourArea(quad));
+    if (quad.size() != 4 || !cv::isContourConvex(quad) || area < 0.3 * side_px * side_px ||
+        area > 2.0 * side_px * side_px || area <= best_area)
+      continue;
+    best_area = area;
+    best.clear();
+    for (const auto& p : quad) best.emplace_back(p.x + roi.x, p.y + roi.y);
+  }
+  if (best.size() == 4) {
+    cv::cornerSubPix(gray, best, cv::Size(4, 4), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::EPS | cv::TermCriteria::COUNT, 50, 0.001));
+  }
+  return best;
+}
+
+class FriendSimCameras : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    // Calibration pose of the description: the marker faces the stereo camera.
+    const auto d = friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath());
+    Client arm("arm/move_joints", false), head("head/move_joints", false);
+    ASSERT_TRUE(arm.waitForServer(ros::Duration(15)));
+    ASSERT_TRUE(head.waitForServer(ros::Duration(15)));
+    imagenets::MoveJointsGoal ga, gh;
+    ga.positions = d.arm_calibration_pose;
+    gh.positions = d.head_calibration_pose;
+    arm.sendGoal(ga);
+    head.sendGoal(gh);
+    ASSERT_TRUE(arm.waitForResult(ros::Duration(20)) && head.waitForResult(ros::Duration(20)));
+    ASSERT_EQ(arm.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
+    ASSERT_EQ(head.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
+  }
+
+  // Triggers a pair and waits for both images (newer than before the trigger).
+  bool grab(sensor_msgs::ImageConstPtr* l, sensor_msgs::ImageConstPtr* r, double timeout = 5.0) {
+    const ros::Time before = ros::Time::now();
+    std_srvs::Trigger t;
+    if (!ros::service::waitForService("stereo/trigger", 10000) || !ros::service::call("stereo/trigger", t)) return false;
+    // The service returns after publishing; the images are on their way.
+    *l = left_.waitNewer(before - ros::Duration(0.001), timeout);
+    *r = right_.waitNewer(before - ros::Duration(0.001), timeout);
+    return *l && *r;
+  }
+
+  Latest<sensor_msgs::Image> left_{"stereo/left/image_raw"}, right_{"stereo/right/image_raw"};
+  Latest<sensor_msgs::CameraInfo> left_info_{"stereo/left/camera_info"}, right_info_{"stereo/right/camera_info"};
+  Latest<geometry_msgs::TransformStamped> gt_marker_{"friend_sim/ground_truth/marker"},
+      gt_left_{"friend_sim/ground_truth/left_camera"}, gt_right_{"friend_sim/ground_truth/right_camera"};
+};
+
+TEST_F(FriendSimCameras, MarkerAppearsWhereTheTrueGeometryProjectsIt) {
+  ros::Duration(0.5).sleep();  // subscriptions connected
+  sensor_msgs::ImageConstPtr l, r;
+  ASSERT_TRUE(grab(&l, &r)) << "no stereo pair after stereo/trigger";
+  EXPECT_EQ(l->header.stamp, r->header.stamp) << "left and right stamps differ";
+  EXPECT_EQ(l->header.frame_id, "stereo_left_optical_frame");
+  EXPECT_EQ(r->header.frame_id, "stereo_right_optical_frame");
+  EXPECT_EQ(l->width, 1024u);
+  EXPECT_EQ(l->height, 768u);
+  auto li = left_info_.waitNewer(l->header.stamp - ros::Duration(1e-6), 2);
+  auto ri = right_info_.waitNewer(r->header.stamp - ros::Duration(1e-6), 2);
+  ASSERT_TRUE(li && ri) << "camera_info missing beside the images";
+  EXPECT_EQ(li->header.stamp, l->header.stamp);
+
+  auto gm = gt_marker_.waitNewer(ros::Time(0), 2), gl = gt_left_.waitNewer(ros::Time(0), 2),
+       gr = gt_right_.waitNewer(ros::Time(0), 2);
+  ASSERT_TRUE(gm && gl && gr) << "ground truth topics missing";
+  const double half = 0.03;  // 60 mm marker
+  const std::vector<Eigen::Vector3d> corners{{-half, half, 0}, {half, half, 0}, {half, -half, 0}, {-half, -half, 0}};
+  int checked = 0;
+  for (auto [img, info, cam] : {std::make_tuple(l, li, gl), std::make_tuple(r, ri, gr)}) {
+    const Eigen::Isometry3d marker_in_cam = toEigen(*cam).inverse() * toEigen(*gm);
+    std::vector<cv::Point3d> obj;
+    for (const auto& c : corners) {
+      const Eigen::Vector3d p = marker_in_cam * c;
+      obj.emplace_back(p.x(), p.y(), p.z());
+    }
+    cv::Mat K(3, 3, CV_64F, const_cast<double*>(info->K.data())), D(info->D);
+    std::vector<cv::Point2d> expected;
+    cv::projectPoints(obj, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, D, expected);
+    const cv::Point2d centre = (expected[0] + expected[1] + expected[2] + expected[3]) / 4;
+    const double side = cv::norm(expected[0] - expected[1]);
+    ASSERT_GT(side, 40) << "marker too small to check";
+    const auto found = detectMarkerCorners(toMat(*img), centre, side);
+    ASSERT_EQ(found.size(), 4u) << "marker not found in " << img->header.frame_id;
+    double worst = 0;
+    for (const auto& e : expected) {
+      double nearest = 1e9;
+      for (const auto& f : found) nearest = std::min(nearest, cv::norm(cv::Point2d(f) - e));
+      worst = std::max(worst, nearest);
+    }
+    std::printf("%s: worst corner distance to the true projection %.3f px (marker side %.0f px)\n",
+                img->header.frame_id.c_str(), worst, side);
+    EXPECT_LT(worst, 0.5) << img->header.frame_id << ": detected corners differ from the true projection by " << worst << " px";
+    ++checked;
+  }
+  EXPECT_EQ(checked, 2);
+}
+
+TEST_F(FriendSimCameras, GroundTruthAgreesWithTheTrueRobotTf) {
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  ros::Duration(1.0).sleep();
+  for (auto* topic : {&gt_left_, &gt_right_, &gt_marker_}) {
+    auto gt = topic->waitNewer(ros::Time(0), 2);
+    ASSERT_TRUE(gt);
+    geometry_msgs::TransformStamped tf;
+    try {
+      tf = buffer.lookupTransform(gt->header.frame_id, gt->child_frame_id, gt->header.stamp, ros::Duration(2.0));
+    } catch (const tf2::TransformException& e) {
+      FAIL() << e.what();
+    }
+    const Eigen::Isometry3d a = toEigen(*gt), b = toEigen(tf);
+    EXPECT_LT((a.translation() - b.translation()).norm(), 1e-6) << gt->child_frame_id;
+    EXPECT_LT(Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle(), 1e-6) << gt->child_frame_id;
+  }
+  // And the truth is not the nominal robot: the head is mounted off by about 15 mm.
+  const auto nominal = friend_hw_sim::RobotModel(
+      friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
+  const auto tf = buffer.lookupTransform("base_link", "head_link_0", ros::Time(0));
+  EXPECT_NEAR((toEigen(tf).translation() - nominal.headBase().translation()).norm(), 0.015, 0.002);
+}
+
+TEST_F(FriendSimCameras, DroppedFramesAndReflectionsFollowTheFaultParameters) {
+  ros::NodeHandle sim("friend_sim");
+  sim.setParam("faults/drop_frame_probability", 1.0);
+  ros::Duration(0.3).sleep();
+  sensor_msgs::ImageConstPtr l, r;
+  EXPECT_FALSE(grab(&l, &r, 1.0)) << "frames published although every frame is dropped";
+  sim.setParam("faults/drop_frame_probability", 0.0);
+  ros::Duration(0.3).sleep();
+  ASSERT_TRUE(grab(&l, &r));
+  const cv::Mat clean = toMat(*l);
+  sim.setParam("faults/reflection_probability", 1.0);
+  ros::Duration(0.3).sleep();
+  ASSERT_TRUE(grab(&l, &r));
+  sim.setParam("faults/reflection_probability", 0.0);
+  const cv::Mat glare = toMat(*l);
+  // The highlight saturates pixels that are not saturated in the clean image.
+  const int saturated_clean = cv::countNonZero(clean >= 250), saturated_glare = cv::countNonZero(glare >= 250);
+  EXPECT_GT(saturated_glare, saturated_clean + 20);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "friend_sim_cameras_test");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}

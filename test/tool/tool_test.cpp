@@ -1,0 +1,116 @@
+// The `imagenets` command line tool, run as a user runs it.
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <boost/filesystem.hpp>
+#include <gtest/gtest.h>
+
+namespace {
+
+struct Result {
+  int status;
+  std::string output;
+};
+
+// Runs `imagenets ARGS` from the repository root; returns exit status and stdout+stderr.
+Result tool(const std::string& args) {
+  const std::string cmd = std::string(IMAGENETS_TOOL) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+  int status = pclose(pipe);
+  return {WEXITSTATUS(status), out};
+}
+
+void expectContains(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "missing \"" << part << "\" in:\n" << text;
+}
+
+std::string temp(const std::string& name) {
+  auto dir = boost::filesystem::temp_directory_path() / ("imagenets_tool_test_" + std::to_string(getpid()));
+  boost::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+}  // namespace
+
+TEST(Tool, BlocksListsByCategoryWithPortsAndProperties) {
+  Result r = tool("blocks");
+  EXPECT_EQ(r.status, 0);
+  expectContains(r.output, "[segmentation]");
+  expectContains(r.output, "imagenets/Threshold - Fixed threshold");
+  expectContains(r.output, "property threshold (int) = 128 [0, 255]");
+  expectContains(r.output, "in  image [sensor_msgs/Image]");
+  // Alphabetical within a category.
+  EXPECT_LT(r.output.find("imagenets/GaussianBlur"), r.output.find("imagenets/Grayscale"));
+}
+
+TEST(Tool, BlocksFiltersByCategoryAndType) {
+  Result r = tool("blocks --category preprocessing");
+  EXPECT_EQ(r.status, 0);
+  expectContains(r.output, "imagenets/Grayscale");
+  EXPECT_EQ(r.output.find("imagenets/Threshold"), std::string::npos);
+  r = tool("blocks --output-type std_msgs/Float64");
+  expectContains(r.output, "imagenets/SegmentationQuality");
+  EXPECT_EQ(r.output.find("imagenets/Grayscale "), std::string::npos);
+  EXPECT_EQ(tool("blocks --category nothing-here").status, 1);
+}
+
+TEST(Tool, ValidateSaysOkOrListsErrors) {
+  Result ok = tool("validate config/nets/threshold_demo.yaml");
+  EXPECT_EQ(ok.status, 0);
+  expectContains(ok.output, "OK config/nets/threshold_demo.yaml");
+  const std::string bad = temp("bad.yaml");
+  std::ofstream(bad) << "blocks:\n  t: {type: imagenets/Treshold}\n  g: {type: imagenets/Grayscale, properties: {x: 1}}\n";
+  Result r = tool("validate " + bad);
+  EXPECT_EQ(r.status, 1);
+  expectContains(r.output, bad + ":2: block 't': unknown block type 'imagenets/Treshold'; did you mean 'imagenets/Threshold'");
+  expectContains(r.output, bad + ":3: block 'g' (imagenets/Grayscale): unknown property 'x'");
+}
+
+TEST(Tool, RunWritesOutputsAndTimings) {
+  const std::string dir = temp("run_out");
+  Result r = tool("run config/nets/threshold_demo.yaml --set threshold.threshold=90 --output-dir " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "4 blocks ran, 0 failed");
+  expectContains(r.output, "threshold               ok             1");
+  EXPECT_TRUE(boost::filesystem::exists(dir + "/threshold.image.png"));
+  EXPECT_TRUE(boost::filesystem::exists(dir + "/gray.image.png"));
+  // A bad --set is named and nothing runs.
+  r = tool("run config/nets/threshold_demo.yaml --set threshold.threshold=900");
+  EXPECT_EQ(r.status, 1);
+  expectContains(r.output, "block 'threshold': property 'threshold': value 900 is out of range [0, 255]");
+}
+
+TEST(Tool, RunWritesTheFeedbackTrace) {
+  const std::string dir = temp("fb_out");
+  Result r = tool("run config/nets/feedback_threshold.yaml --output-dir " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(dir + "/threshold.feedback_trace.yaml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  expectContains(ss.str(), "trials: 41");
+  expectContains(ss.str(), "found: 1");
+}
+
+TEST(Tool, GraphDrawsAnSvg) {
+  const std::string svg = temp("net.svg");
+  Result r = tool("graph config/nets/feedback_threshold.yaml -o " + svg);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(svg);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  expectContains(ss.str(), "<svg");
+  expectContains(ss.str(), "threshold");
+  expectContains(ss.str(), "feedback: threshold (max)");
+}
+
+TEST(Tool, UnknownCommandAndMissingArgumentsAreUsageErrors) {
+  EXPECT_EQ(tool("frobnicate").status, 2);
+  Result r = tool("graph config/nets/threshold_demo.yaml");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "usage: imagenets graph");
+}
