@@ -8,7 +8,8 @@
 //     messages pass as ConstPtr (zero-copy).
 //   - several inputs are paired by header stamp (exact, or approximate within a slop);
 //     header-less inputs (std_msgs/Float64, ...) take their latest value.
-//   - a block without required inputs (a source) runs once, on a timer or on ~run.
+//   - a block without required or linked (remapped) inputs, a source, runs once, on a timer or
+//     on ~run; a block whose inputs are all optional but linked runs on every arrival.
 //   - properties come from ~private parameters (same checks and messages as net files) and can
 //     be changed live through the dynamic_reconfigure protocol (~set_parameters,
 //     ~parameter_descriptions, ~parameter_updates); a change re-runs the block on its cached

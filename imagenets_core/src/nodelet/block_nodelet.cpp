@@ -39,7 +39,8 @@ std::vector<PropertySpec> hostPropertySpecs() {
                      "latch the outputs (late subscribers get the last value; costs one serialisation per "
                      "message); outputs of a source run `once` are always latched; load time only");
   specs.emplace_back("source_mode", PropertyKind::String, std::string("timer"),
-                     "a block without required inputs runs: once (at load), timer (every 1/source_rate s) or "
+                     "a source (a block without required or linked inputs) runs: once (at load), timer (every "
+                     "1/source_rate s) or "
                      "trigger (on ~run only)");
   specs.back().choices({"once", "timer", "trigger"});
   specs.emplace_back("source_rate", PropertyKind::Double, 1.0, "runs per second of a source in timer mode");
@@ -109,9 +110,15 @@ class BlockHost {
     }
     allSpecs();  // the block's ports and properties are final now
 
+    // A source: no required input and no input linked (remapped). It runs once, on a timer or on
+    // ~run; any other block runs when its inputs arrive.
     std::vector<bool> required;
-    for (const PortSpec& p : block_->inputs()) required.push_back(!p.optional);
-    pairing_ = std::make_unique<InputPairing>(required, pairingOptions());
+    bool linked = false;
+    for (const PortSpec& p : block_->inputs()) {
+      required.push_back(!p.optional);
+      linked = linked || !p.optional || pnh_.resolveName("in/" + p.name) != pnh_.getNamespace() + "/in/" + p.name;
+    }
+    pairing_ = std::make_unique<InputPairing>(required, pairingOptions(), !linked);
     cached_inputs_.resize(block_->inputs().size());
 
     const bool latch = hostBool("latch") || (pairing_->isSource() && hostString("source_mode") == "once");
