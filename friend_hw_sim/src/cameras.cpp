@@ -7,9 +7,11 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/Image.h>
+#include <visualization_msgs/MarkerArray.h>
 #include <yaml-cpp/yaml.h>
 
 #include "friend_hw_sim/friend_sim.h"
+#include "imagenets/blocks/marker.h"
 
 namespace friend_hw_sim {
 namespace {
@@ -139,22 +141,9 @@ WorldScene loadWorldScene(const std::string& path) {
   return s;
 }
 
-cv::Mat defaultMarkerTexture(int pixels) {
-  // 8 x 8 cells: a 2-cell black border, a 4 x 4 white field carrying an asymmetric pattern.
-  const int cells = 8;
-  cv::Mat m(cells, cells, CV_8U, cv::Scalar(0));
-  const int pattern[4][4] = {{1, 1, 1, 1}, {1, 0, 1, 1}, {1, 0, 0, 1}, {1, 1, 1, 1}};
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) m.at<uchar>(y + 2, x + 2) = pattern[y][x] ? 255 : 0;
-  cv::Mat out;
-  cv::resize(m, out, cv::Size(pixels, pixels), 0, 0, cv::INTER_NEAREST);
-  return out;
-}
+namespace {
 
-cv::Mat renderView(const render::Renderer& renderer, const WorldScene& world, const cv::Mat& marker_texture,
-                   double marker_size, const Eigen::Isometry3d& marker_in_base, const Eigen::Isometry3d& camera_in_base,
-                   const render::RenderOptions& options) {
-  const Eigen::Isometry3d base_in_camera = camera_in_base.inverse();
+render::Scene worldScene(const WorldScene& world, const Eigen::Isometry3d& base_in_camera) {
   render::Scene scene;
   scene.light.direction = base_in_camera.linear() * world.light_direction;
   scene.light.ambient = world.ambient;
@@ -168,19 +157,47 @@ cv::Mat renderView(const render::Renderer& renderer, const WorldScene& world, co
     p.pose = base_in_camera * wp.pose;
     scene.planes.push_back(p);
   }
-  // The marker, and the white plate it is printed on (1 mm behind, 1.5 x its size).
-  render::Plane marker;
-  marker.texture = marker_texture;
-  marker.width = marker.height = marker_size;
+  return scene;
+}
+
+}  // namespace
+
+cv::Mat renderView(const render::Renderer& renderer, const WorldScene& world, const render::Plane& marker_plane,
+                   const Eigen::Isometry3d& marker_in_base, const Eigen::Isometry3d& camera_in_base,
+                   const render::RenderOptions& options, WorldViewCache* cache) {
+  const Eigen::Isometry3d base_in_camera = camera_in_base.inverse();
+  render::Scene scene = worldScene(world, base_in_camera);
+  render::Plane marker = marker_plane;
   marker.pose = base_in_camera * marker_in_base;
-  scene.planes.push_back(marker);
-  static const cv::Mat white(4, 4, CV_8U, cv::Scalar(245));
-  render::Plane plate;
-  plate.texture = white;
-  plate.width = plate.height = marker_size * 1.5;
-  plate.pose = marker.pose * fromXyzRpy(Eigen::Vector3d(0, 0, -0.001), Eigen::Vector3d::Zero());
-  scene.planes.push_back(plate);
-  return renderer.render(scene, options);
+  if (!cache) {
+    scene.planes.push_back(marker);
+    return renderer.render(scene, options);
+  }
+  if (!cache->valid || cache->camera_in_base != camera_in_base.matrix()) {
+    render::RenderOptions plain = options;
+    plain.illumination = 1.0;
+    plain.blur_sigma = 0.0;
+    plain.noise_sigma = 0.0;
+    cache->image = renderer.render(scene, plain);
+    cache->depth = renderer.renderDepth(scene);
+    cache->camera_in_base = camera_in_base.matrix();
+    cache->valid = true;
+  }
+  render::Scene marker_only;
+  marker_only.light = scene.light;
+  marker_only.planes.push_back(marker);
+  // Where the world is nearer than the marker, the marker is (partly) hidden: render in full.
+  const cv::Mat marker_depth = renderer.renderDepth(marker_only);
+  const cv::Mat hit = marker_depth > 0;
+  const cv::Mat world_hit = cache->depth > 0;
+  cv::Mat in_front = (cache->depth < marker_depth) & hit & world_hit;
+  if (cv::countNonZero(in_front) > 0) {
+    scene.planes.push_back(marker);
+    return renderer.render(scene, options);
+  }
+  render::RenderOptions over = options;
+  over.background_image = cache->image;
+  return renderer.render(marker_only, over);
 }
 
 CameraSim::Camera CameraSim::makeCamera(ros::NodeHandle nh, const std::string& name, const std::string& info_file,
@@ -204,18 +221,49 @@ CameraSim::CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& s
   const std::string desc = defaultRobotDescriptionPath();
   const std::string config = desc.substr(0, desc.size() - std::string("friend/robot.yaml").size());
   world_ = loadWorldScene(pnh_.param<std::string>("scene", config + "friend/scene.yaml"));
-  const std::string marker_file = pnh_.param<std::string>("marker_texture", "");
-  if (marker_file.empty()) {
-    marker_texture_ = defaultMarkerTexture();
-  } else {
-    marker_texture_ = cv::imread(marker_file, cv::IMREAD_GRAYSCALE);
-    if (marker_texture_.empty()) throw std::runtime_error("parameter ~marker_texture: cannot read '" + marker_file + "'");
-  }
-  const int ss = pnh_.param("camera/supersampling", 2);
+  // The gripper marker as printed (config/markers/gripper.yaml: border, pattern, white margin).
   const auto& d = sim_.nominal().description();
+  const std::string marker_file = pnh_.param<std::string>("marker", config + "markers/gripper.yaml");
+  const auto marker = imagenets::marker::MarkerDescription::load(marker_file);
+  if (std::abs(marker.size - d.marker_size) > 1e-9) {
+    throw std::runtime_error("marker '" + marker_file + "' is " + std::to_string(marker.size) +
+                             " m but the robot description's arm.marker.size is " + std::to_string(d.marker_size) + " m");
+  }
+  marker_plane_ = imagenets::marker::markerPlane(marker, Eigen::Isometry3d::Identity());
+  marker_size_ = marker.size;
+  const int ss = pnh_.param("camera/supersampling", 2);
   left_ = makeCamera(nh_, "stereo/left", d.left_camera_info, d.left_camera.frame, ss);
   right_ = makeCamera(nh_, "stereo/right", d.right_camera_info, d.right_camera_frame, ss);
   hand_ = makeCamera(nh_, "hand_camera", config + "cameras/friend_hand_camera.yaml", d.hand_camera.frame, ss);
+  // The world's planes as thin boxes for rviz (latched: the world does not change).
+  scene_markers_ = nh_.advertise<visualization_msgs::MarkerArray>("scene_markers", 1, true);
+  visualization_msgs::MarkerArray markers;
+  for (const auto& wp : world_.planes) {
+    visualization_msgs::Marker mk;
+    mk.header.frame_id = d.base_frame;
+    mk.ns = "friend_sim_scene";
+    mk.id = static_cast<int>(markers.markers.size());
+    mk.type = visualization_msgs::Marker::CUBE;
+    const Eigen::Isometry3d centre = wp.pose * fromXyzRpy(Eigen::Vector3d(0, 0, -0.001), Eigen::Vector3d::Zero());
+    mk.pose.position.x = centre.translation().x();
+    mk.pose.position.y = centre.translation().y();
+    mk.pose.position.z = centre.translation().z();
+    const Eigen::Quaterniond q(centre.linear());
+    mk.pose.orientation.x = q.x();
+    mk.pose.orientation.y = q.y();
+    mk.pose.orientation.z = q.z();
+    mk.pose.orientation.w = q.w();
+    mk.scale.x = wp.width;
+    mk.scale.y = wp.height;
+    mk.scale.z = 0.002;
+    const float grey = static_cast<float>(cv::mean(wp.texture)[0] / 255.0);
+    mk.color.r = grey * 0.9f;
+    mk.color.g = grey * 0.8f;
+    mk.color.b = grey * 0.6f;
+    mk.color.a = wp.name == "floor" || wp.name == "wall" ? 0.35f : 1.0f;
+    markers.markers.push_back(mk);
+  }
+  scene_markers_.publish(markers);
   trigger_stereo_ = nh_.advertiseService("stereo/trigger", &CameraSim::triggerStereo, this);
   trigger_hand_ = nh_.advertiseService("hand_camera/trigger", &CameraSim::triggerHand, this);
   thread_ = std::thread([this] { loop(); });
@@ -254,7 +302,7 @@ bool CameraSim::applyFaults(cv::Mat& image, const Camera& cam, const Eigen::Isom
     const Eigen::Vector3d c = (camera_in_base.inverse() * marker_in_base).translation();
     if (c.z() > 0.05) {
       const cv::Point2d px = cam.renderer->camera().project(c);
-      const double side = cam.info.K[0] * 0.06 / c.z();
+      const double side = cam.info.K[0] * marker_size_ / c.z();
       const cv::Point2d centre(px.x + (u(rng_) - 0.5) * side, px.y + (u(rng_) - 0.5) * side);
       const double sigma = side * (0.12 + 0.15 * u(rng_));
       const double amplitude = 200 + 100 * u(rng_);
@@ -306,12 +354,9 @@ void CameraSim::publishStereo() {
   const std::uint64_t seed = ++frame_ * 2;
   cv::Mat left, right;
   // The two views render in parallel (the renderer also splits rows across threads).
-  std::thread right_thread([&] {
-    right = renderView(*right_.renderer, world_, marker_texture_, truth.description().marker_size, marker, right_pose,
-                       options(seed + 1));
-  });
-  left = renderView(*left_.renderer, world_, marker_texture_, truth.description().marker_size, marker, left_pose,
-                    options(seed));
+  std::thread right_thread(
+      [&] { right = renderView(*right_.renderer, world_, marker_plane_, marker, right_pose, options(seed + 1), &right_.cache); });
+  left = renderView(*left_.renderer, world_, marker_plane_, marker, left_pose, options(seed), &left_.cache);
   right_thread.join();
   if (applyFaults(left, left_, left_pose, marker)) publish(left_, left, s.stamp);
   if (applyFaults(right, right_, right_pose, marker)) publish(right_, right, s.stamp);
@@ -322,8 +367,7 @@ void CameraSim::publishHand() {
   const RobotState s = sim_.state();
   const RobotModel& truth = sim_.truth();
   const Eigen::Isometry3d marker = truth.marker(s.arm), cam = truth.handCamera(s.arm);
-  cv::Mat image = renderView(*hand_.renderer, world_, marker_texture_, truth.description().marker_size, marker, cam,
-                             options(++frame_ * 2));
+  cv::Mat image = renderView(*hand_.renderer, world_, marker_plane_, marker, cam, options(++frame_ * 2), &hand_.cache);
   if (applyFaults(image, hand_, cam, marker)) publish(hand_, image, s.stamp);
 }
 

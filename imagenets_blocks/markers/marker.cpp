@@ -382,16 +382,23 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
 
   std::vector<cv::Point2d> image_norm(outer);
   image_norm.insert(image_norm.end(), inner_norm.begin(), inner_norm.end());
+  // The pose fit: the inner corners repeated `inner_weight` times (a weighted least squares).
+  std::vector<cv::Point3d> fit_object(defined.begin(), defined.begin() + 4);
+  std::vector<cv::Point2d> fit_image(outer);
+  for (int w = 0; w < std::max(1, options.inner_weight); ++w) {
+    fit_object.insert(fit_object.end(), defined.begin() + 4, defined.end());
+    fit_image.insert(fit_image.end(), inner_norm.begin(), inner_norm.end());
+  }
   const cv::Mat I = cv::Mat::eye(3, 3, CV_64F);
   std::vector<cv::Mat> rvecs, tvecs;
-  const int n = cv::solvePnPGeneric(defined, image_norm, I, cv::noArray(), rvecs, tvecs, false, cv::SOLVEPNP_IPPE);
+  const int n = cv::solvePnPGeneric(fit_object, fit_image, I, cv::noArray(), rvecs, tvecs, false, cv::SOLVEPNP_IPPE);
   if (n == 0) return result;
   const double f = 0.5 * (camera.K(0, 0) + camera.K(1, 1));  // normalised -> pixel error scale
   std::vector<Eigen::Isometry3d> poses;
   std::vector<double> errors;
   for (int s = 0; s < n; ++s) {
     cv::Mat rvec = rvecs[s].clone(), tvec = tvecs[s].clone();
-    cv::solvePnPRefineLM(defined, image_norm, I, cv::noArray(), rvec, tvec,
+    cv::solvePnPRefineLM(fit_object, fit_image, I, cv::noArray(), rvec, tvec,
                          cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 50, 1e-12));
     std::vector<cv::Point2d> reproj;
     cv::projectPoints(defined, rvec, tvec, I, cv::noArray(), reproj);

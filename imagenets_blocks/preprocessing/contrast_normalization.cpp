@@ -33,9 +33,9 @@ class ContrastNormalization : public Block {
       return;
     }
     const double gain = (high - low) / (hi - lo);
-    cv::Mat out;
-    in.convertTo(out, CV_8U, gain, low - lo * gain);
-    ctx.output("image", toImageMsg(out, encoding, header));
+    OutputImage out = newOutputImage(cv::Size(in.cols, in.rows), in.type(), encoding, header);
+    in.convertTo(out.mat, CV_8U, gain, low - lo * gain);
+    ctx.output("image", out.msg);
   }
 };
 

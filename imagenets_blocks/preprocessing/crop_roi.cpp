@@ -51,7 +51,9 @@ class CropRoi : public Block {
       out->roi = sensor_msgs::RegionOfInterest();  // the image now is the region
       ctx.output("camera_info", out);
     }
-    ctx.output("image", toImageMsg(in(roi).clone(), encoding, header));
+    OutputImage out = newOutputImage(cv::Size(w, h), in.type(), encoding, header);
+    in(roi).copyTo(out.mat);
+    ctx.output("image", out.msg);
   }
 };
 

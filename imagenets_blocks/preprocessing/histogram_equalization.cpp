@@ -30,7 +30,8 @@ class HistogramEqualization : public Block {
         cv::equalizeHist(gray, out);
       }
     };
-    cv::Mat out;
+    OutputImage result = newOutputImage(cv::Size(in.cols, in.rows), in.type(), encoding, header);
+    cv::Mat& out = result.mat;
     if (encoding == "mono8") {
       equalize(in, out);
     } else {
@@ -43,7 +44,7 @@ class HistogramEqualization : public Block {
       cv::merge(channels, ycrcb);
       cv::cvtColor(ycrcb, out, rgb ? cv::COLOR_YCrCb2RGB : cv::COLOR_YCrCb2BGR);
     }
-    ctx.output("image", toImageMsg(out, encoding, header));
+    ctx.output("image", result.msg);
   }
 };
 

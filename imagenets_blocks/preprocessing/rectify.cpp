@@ -47,15 +47,15 @@ class Rectify : public Block {
     std::shared_ptr<const Maps> maps = mapsFor(*info);
     static const std::map<std::string, int> kInterpolation{
         {"nearest", cv::INTER_NEAREST}, {"linear", cv::INTER_LINEAR}, {"cubic", cv::INTER_CUBIC}};
-    cv::Mat out;
-    cv::remap(in, out, maps->map1, maps->map2, kInterpolation.at(ctx.property<std::string>("interpolation")),
+    OutputImage out = newOutputImage(cv::Size(in.cols, in.rows), in.type(), encoding, header);
+    cv::remap(in, out.mat, maps->map1, maps->map2, kInterpolation.at(ctx.property<std::string>("interpolation")),
               cv::BORDER_CONSTANT);
     sensor_msgs::CameraInfo::Ptr rectified(new sensor_msgs::CameraInfo(*info));
     rectified->header = header;
     rectified->D.assign(info->D.size(), 0.0);
     rectified->R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     rectified->K = {info->P[0], info->P[1], info->P[2], info->P[4], info->P[5], info->P[6], 0, 0, 1};
-    ctx.output("image", toImageMsg(out, encoding, header));
+    ctx.output("image", out.msg);
     ctx.output("camera_info", rectified);
   }
 

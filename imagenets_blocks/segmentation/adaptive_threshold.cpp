@@ -24,13 +24,13 @@ class AdaptiveThreshold : public Block {
     const cv::Mat in = inputImage(ctx, "image", {"mono8"}, nullptr, &header);
     const int block = ctx.property<int>("block_size");
     if (block % 2 == 0) throw BlockError("property 'block_size': " + std::to_string(block) + " is even (must be odd)");
-    cv::Mat out;
-    cv::adaptiveThreshold(in, out, 255,
+    OutputImage out = newOutputImage(cv::Size(in.cols, in.rows), CV_8UC1, "mono8", header);
+    cv::adaptiveThreshold(in, out.mat, 255,
                           ctx.property<std::string>("method") == "gaussian" ? cv::ADAPTIVE_THRESH_GAUSSIAN_C
                                                                             : cv::ADAPTIVE_THRESH_MEAN_C,
                           ctx.property<bool>("invert") ? cv::THRESH_BINARY_INV : cv::THRESH_BINARY, block,
                           ctx.property<double>("offset"));
-    ctx.output("image", toImageMsg(out, "mono8", header));
+    ctx.output("image", out.msg);
   }
 };
 

@@ -33,16 +33,17 @@ class ColourRange : public Block {
     } else {
       converted = in;
     }
-    cv::Mat out;
+    OutputImage result = newOutputImage(cv::Size(in.cols, in.rows), CV_8UC1, "mono8", header);
+    cv::Mat& out = result.mat;
     if (hsv && lower[0] > upper[0]) {  // hue wraps: [lower, 179] or [0, upper]
       cv::Mat a, b;
       cv::inRange(converted, cv::Scalar(lower[0], lower[1], lower[2]), cv::Scalar(179, upper[1], upper[2]), a);
       cv::inRange(converted, cv::Scalar(0, lower[1], lower[2]), cv::Scalar(upper[0], upper[1], upper[2]), b);
-      out = a | b;
+      cv::bitwise_or(a, b, out);
     } else {
       cv::inRange(converted, cv::Scalar(lower[0], lower[1], lower[2]), cv::Scalar(upper[0], upper[1], upper[2]), out);
     }
-    ctx.output("image", toImageMsg(out, "mono8", header));
+    ctx.output("image", result.msg);
   }
 
  private:

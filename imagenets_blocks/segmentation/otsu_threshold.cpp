@@ -21,11 +21,11 @@ class OtsuThreshold : public Block {
   void process(Context& ctx) override {
     std_msgs::Header header;
     const cv::Mat in = inputImage(ctx, "image", {"mono8"}, nullptr, &header);
-    cv::Mat out;
+    OutputImage out = newOutputImage(cv::Size(in.cols, in.rows), CV_8UC1, "mono8", header);
     const int type = (ctx.property<bool>("invert") ? cv::THRESH_BINARY_INV : cv::THRESH_BINARY) | cv::THRESH_OTSU;
     boost::shared_ptr<std_msgs::Float64> level(new std_msgs::Float64);
-    level->data = cv::threshold(in, out, 0, 255, type);
-    ctx.output("image", toImageMsg(out, "mono8", header));
+    level->data = cv::threshold(in, out.mat, 0, 255, type);
+    ctx.output("image", out.msg);
     ctx.output("threshold", level);
   }
 };

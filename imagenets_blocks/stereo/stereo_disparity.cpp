@@ -58,10 +58,10 @@ class StereoDisparity : public Block {
                                                                           : cv::StereoSGBM::MODE_SGBM);
     cv::Mat fixed;  // 16 x disparity, CV_16S; below min_disparity = invalid
     sgbm->compute(left, right, fixed);
-    cv::Mat disparity;
-    fixed.convertTo(disparity, CV_32F, 1.0 / 16);
-    disparity.setTo(std::numeric_limits<float>::quiet_NaN(), fixed < min_d * 16);
-    ctx.output("disparity", toImageMsg(disparity, "32FC1", header));
+    OutputImage disparity = newOutputImage(cv::Size(fixed.cols, fixed.rows), CV_32FC1, "32FC1", header);
+    fixed.convertTo(disparity.mat, CV_32F, 1.0 / 16);
+    disparity.mat.setTo(std::numeric_limits<float>::quiet_NaN(), fixed < min_d * 16);
+    ctx.output("disparity", disparity.msg);
   }
 };
 

@@ -100,7 +100,7 @@ class SyntheticStereoPair : public Block {
   // two octaves; tinted per surface.
   struct Texture {
     static constexpr int kSize = 512;
-    cv::Mat grid;  // kSize x kSize x 3, wraps around
+    cv::Mat grid;  // kSize x kSize x 3 (channel 0 used), wraps around
     double cell;
     cv::Vec3d tint;
     Texture(cv::RNG& rng, double cell_size, cv::Vec3d t) : grid(kSize, kSize, CV_32FC3), cell(cell_size), tint(t) {
@@ -118,10 +118,10 @@ class SyntheticStereoPair : public Block {
     }
     cv::Vec3d at(double x, double y) const {
       const cv::Vec3d n = 0.7 * sample(x / cell, y / cell) + 0.3 * sample(x / (4 * cell) + 100.5, y / (4 * cell) + 7.25);
-      // Mostly luminance texture (what block matching needs), some colour.
-      const double lum = (n[0] + n[1] + n[2]) / 3.0;
+      // Luminance texture (what block matching needs; it also keeps PNG files small), tinted.
+      const double lum = n[0];
       cv::Vec3d c;
-      for (int k = 0; k < 3; ++k) c[k] = 255.0 * tint[k] * (0.15 + 0.85 * (0.75 * lum + 0.25 * n[k]));
+      for (int k = 0; k < 3; ++k) c[k] = 255.0 * tint[k] * (0.1 + 0.9 * lum);
       return c;
     }
   };

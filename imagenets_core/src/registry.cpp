@@ -14,8 +14,15 @@ BlockRegistry& BlockRegistry::instance() {
 }
 
 void BlockRegistry::add(BlockInfo info, const void* anchor) {
-  // A library loaded twice (linked, then again by a plug-in loader) registers the same names.
-  if (find(info.type)) return;
+  // A library loaded twice (linked, then again by a plug-in loader) registers the same names;
+  // two different classes under one name is a mistake worth reporting.
+  if (const BlockInfo* known = find(info.type)) {
+    if (known->cpp_type != info.cpp_type) {
+      conflicts_.push_back("block type '" + info.type + "' registered by both " + known->cpp_type + " and " +
+                           info.cpp_type);
+    }
+    return;
+  }
   Dl_info where{};
   if (anchor && dladdr(anchor, &where) && where.dli_fname) {
     std::string file = where.dli_fname;

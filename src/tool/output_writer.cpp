@@ -8,16 +8,16 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/image_encodings.h>
+
+#include "imagenets/blocks/plot.h"
+#include "imagenets/blocks/point_cloud.h"
+#include <imagenets/FeedbackTrace.h>
 
 namespace imagenets {
 namespace tool {
 namespace {
-
-std::multimap<std::string, ExtraWriter>& extraWriters() {
-  static std::multimap<std::string, ExtraWriter> writers;
-  return writers;
-}
 
 void commit(const std::string& tmp, const std::string& path) {
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
@@ -47,14 +47,16 @@ std::string writeImage(const sensor_msgs::Image& msg, const std::string& path) {
 
 }  // namespace
 
-void addExtraWriter(const std::string& type, ExtraWriter writer) { extraWriters().emplace(type, std::move(writer)); }
-
 std::string writeValue(const Value& value, const std::string& dir, const std::string& stem) {
   if (!value) return "";
   const std::string base = dir + "/" + stem;
   std::string written;
   if (value.type->name == "sensor_msgs/Image") {
     written = writeImage(*value.as<sensor_msgs::Image>(), base + ".png");
+  } else if (value.type->name == "sensor_msgs/PointCloud2") {
+    // A cloud as YAML would be megabytes of numbers: PLY opens in MeshLab / CloudCompare.
+    written = base + ".ply";
+    cloud::writePly(*value.as<sensor_msgs::PointCloud2>(), written);
   } else {
     written = base + ".yaml";
     const std::string tmp = written + ".tmp";
@@ -66,8 +68,13 @@ std::string writeValue(const Value& value, const std::string& dir, const std::st
     }
     commit(tmp, written);
   }
-  auto range = extraWriters().equal_range(value.type->name);
-  for (auto it = range.first; it != range.second; ++it) it->second(value, dir, stem);
+  if (value.type->name == "imagenets/FeedbackTrace") {
+    // The sweep as a person wants to see it: score over the property, chosen value marked.
+    cv::Mat plot = plot::plotFeedbackTrace(*value.as<FeedbackTrace>(), 800, 500);
+    const std::string png = base + ".png", tmp = base + ".tmp.png";
+    if (!cv::imwrite(tmp, plot)) throw std::runtime_error("cannot write '" + png + "'");
+    commit(tmp, png);
+  }
   return written;
 }
 

@@ -139,7 +139,7 @@ TEST_F(FriendSimActions, NewGoalPreemptsAndCancelStops) {
 
 TEST_F(FriendSimActions, FeedbackReportsProgress) {
   std::vector<double> progress;
-  arm_.sendGoal(goal({20, 20, 0, 30, 0, 0, 0}), Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
+  arm_.sendGoal(goal({20, 20, 0, 30, 0, 0, 0}, 0.2), Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
                 [&](const imagenets::MoveJointsFeedbackConstPtr& fb) { progress.push_back(fb->progress); });
   ASSERT_TRUE(arm_.waitForResult(ros::Duration(20)));
   EXPECT_EQ(arm_.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);

@@ -1,5 +1,5 @@
 // rostest: the simulator's cameras show the gripper marker where the TRUE geometry projects it
-// (sub-pixel), stereo pairs carry identical stamps with camera_info beside them, ground truth
+// (sub-pixel, found by the project's marker detector), stereo pairs carry identical stamps with camera_info beside them, ground truth
 // agrees with the TF tree of the true robot, and camera faults do what they say.
 #include <cmath>
 #include <cstdio>
@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
+#include <ros/package.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -18,6 +19,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include "friend_hw_sim/robot_model.h"
+#include "imagenets/blocks/marker.h"
 #include "imagenets/MoveJointsAction.h"
 
 namespace {
@@ -63,36 +65,6 @@ Eigen::Isometry3d toEigen(const geometry_msgs::TransformStamped& t) { return tf2
 cv::Mat toMat(const sensor_msgs::Image& img) {
   EXPECT_EQ(img.encoding, "mono8");
   return cv::Mat(img.height, img.width, CV_8U, const_cast<uint8_t*>(img.data.data()), img.step).clone();
-}
-
-// The outer corners of the dark marker square: the largest dark quadrilateral near `hint`,
-// corners refined to sub-pixel accuracy.
-std::vector<cv::Point2f> detectMarkerCorners(const cv::Mat& gray, const cv::Point2d& hint, double side_px) {
-  const int r = static_cast<int>(side_px * 1.6);
-  const cv::Rect roi = cv::Rect(static_cast<int>(hint.x) - r, static_cast<int>(hint.y) - r, 2 * r, 2 * r) &
-                       cv::Rect(0, 0, gray.cols, gray.rows);
-  cv::Mat bin;
-  cv::threshold(gray(roi), bin, 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
-  std::vector<std::vector<cv::Point>> contours;
-  cv::findContours(bin, contours, cv::RETR_LIST, cv::CHAIN_APPROX_SIMPLE);
-  std::vector<cv::Point2f> best;
-  double best_area = 0;
-  for (const auto& c : contours) {
-    std::vector<cv::Point> quad;
-    cv::approxPolyDP(c, quad, 0.05 * cv::arcLength(c, true), true);
-    const double area = std::abs(cv::contourArea(quad));
-    if (quad.size() != 4 || !cv::isContourConvex(quad) || area < 0.3 * side_px * side_px ||
-        area > 2.0 * side_px * side_px || area <= best_area)
-      continue;
-    best_area = area;
-    best.clear();
-    for (const auto& p : quad) best.emplace_back(p.x + roi.x, p.y + roi.y);
-  }
-  if (best.size() == 4) {
-    cv::cornerSubPix(gray, best, cv::Size(4, 4), cv::Size(-1, -1),
-                     cv::TermCriteria(cv::TermCriteria::EPS | cv::TermCriteria::COUNT, 50, 0.001));
-  }
-  return best;
 }
 
 class FriendSimCameras : public ::testing::Test {
@@ -147,33 +119,34 @@ TEST_F(FriendSimCameras, MarkerAppearsWhereTheTrueGeometryProjectsIt) {
   auto gm = gt_marker_.waitNewer(ros::Time(0), 2), gl = gt_left_.waitNewer(ros::Time(0), 2),
        gr = gt_right_.waitNewer(ros::Time(0), 2);
   ASSERT_TRUE(gm && gl && gr) << "ground truth topics missing";
-  const double half = 0.03;  // 60 mm marker
-  const std::vector<Eigen::Vector3d> corners{{-half, half, 0}, {half, half, 0}, {half, -half, 0}, {-half, -half, 0}};
+  // The project's marker detector (imagenets/blocks/marker.h) on each image, compared with the
+  // 8 defined points of the gripper marker projected through the TRUE geometry.
+  const auto marker = imagenets::marker::MarkerDescription::load(ros::package::getPath("imagenets") +
+                                                                 "/config/markers/gripper.yaml");
   int checked = 0;
   for (auto [img, info, cam] : {std::make_tuple(l, li, gl), std::make_tuple(r, ri, gr)}) {
     const Eigen::Isometry3d marker_in_cam = toEigen(*cam).inverse() * toEigen(*gm);
     std::vector<cv::Point3d> obj;
-    for (const auto& c : corners) {
-      const Eigen::Vector3d p = marker_in_cam * c;
+    for (const auto& c : marker.definedPoints()) {
+      const Eigen::Vector3d p = marker_in_cam * Eigen::Vector3d(c.x, c.y, c.z);
       obj.emplace_back(p.x(), p.y(), p.z());
     }
     cv::Mat K(3, 3, CV_64F, const_cast<double*>(info->K.data())), D(info->D);
     std::vector<cv::Point2d> expected;
     cv::projectPoints(obj, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, D, expected);
-    const cv::Point2d centre = (expected[0] + expected[1] + expected[2] + expected[3]) / 4;
-    const double side = cv::norm(expected[0] - expected[1]);
-    ASSERT_GT(side, 40) << "marker too small to check";
-    const auto found = detectMarkerCorners(toMat(*img), centre, side);
-    ASSERT_EQ(found.size(), 4u) << "marker not found in " << img->header.frame_id;
+    const cv::Mat gray = toMat(*img);
+    cv::Mat binary;
+    cv::threshold(gray, binary, 60, 255, cv::THRESH_BINARY);
+    const auto camera = imagenets::render::CameraModel::fromCameraInfo(*info);
+    const auto det = imagenets::marker::detect(gray, binary, camera, marker);
+    ASSERT_TRUE(det.found) << "marker not detected in " << img->header.frame_id << " (confidence " << det.confidence << ")";
     double worst = 0;
-    for (const auto& e : expected) {
-      double nearest = 1e9;
-      for (const auto& f : found) nearest = std::min(nearest, cv::norm(cv::Point2d(f) - e));
-      worst = std::max(worst, nearest);
-    }
-    std::printf("%s: worst corner distance to the true projection %.3f px (marker side %.0f px)\n",
-                img->header.frame_id.c_str(), worst, side);
-    EXPECT_LT(worst, 0.5) << img->header.frame_id << ": detected corners differ from the true projection by " << worst << " px";
+    for (int i = 0; i < 8; ++i) worst = std::max(worst, cv::norm(det.points[i] - expected[i]));
+    const double position_error = (det.pose.translation() - marker_in_cam.translation()).norm();
+    std::printf("%s: worst of the 8 points %.3f px from the true projection; pose %.2f mm, %.2f deg off\n",
+                img->header.frame_id.c_str(), worst, position_error * 1000,
+                imagenets::marker::rotationAngle(det.pose, marker_in_cam) * 180 / M_PI);
+    EXPECT_LT(worst, 0.3) << img->header.frame_id << ": detected points differ from the true projection by " << worst << " px";
     ++checked;
   }
   EXPECT_EQ(checked, 2);
@@ -221,6 +194,35 @@ TEST_F(FriendSimCameras, DroppedFramesAndReflectionsFollowTheFaultParameters) {
   // The highlight saturates pixels that are not saturated in the clean image.
   const int saturated_clean = cv::countNonZero(clean >= 250), saturated_glare = cv::countNonZero(glare >= 250);
   EXPECT_GT(saturated_glare, saturated_clean + 20);
+
+  // A corrupted frame: a band of rows shifted sideways, so many rows differ from the clean image.
+  sim.setParam("faults/corrupt_frame_probability", 1.0);
+  ros::Duration(0.3).sleep();
+  ASSERT_TRUE(grab(&l, &r));
+  sim.setParam("faults/corrupt_frame_probability", 0.0);
+  const cv::Mat corrupt = toMat(*l);
+  int rows_changed = 0;
+  for (int y = 0; y < clean.rows; ++y) {
+    cv::Mat d;
+    cv::absdiff(clean.row(y), corrupt.row(y), d);
+    if (cv::mean(d)[0] > 20) ++rows_changed;
+  }
+  EXPECT_GT(rows_changed, clean.rows / 20);
+  EXPECT_LT(rows_changed, clean.rows / 2);
+}
+
+TEST_F(FriendSimCameras, IlluminationIsSettableLive) {
+  ros::NodeHandle sim("friend_sim");
+  sensor_msgs::ImageConstPtr l, r;
+  ros::Duration(0.3).sleep();
+  ASSERT_TRUE(grab(&l, &r));
+  const double bright = cv::mean(toMat(*l))[0];
+  sim.setParam("camera/illumination", 0.5);
+  ros::Duration(0.3).sleep();
+  ASSERT_TRUE(grab(&l, &r));
+  sim.setParam("camera/illumination", 1.0);
+  const double dim = cv::mean(toMat(*l))[0];
+  EXPECT_NEAR(dim / bright, 0.5, 0.05) << "mean gray " << bright << " -> " << dim;
 }
 
 }  // namespace

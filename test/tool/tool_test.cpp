@@ -94,6 +94,7 @@ TEST(Tool, RunWritesTheFeedbackTrace) {
   ss << in.rdbuf();
   expectContains(ss.str(), "trials: 41");
   expectContains(ss.str(), "found: 1");
+  EXPECT_TRUE(boost::filesystem::exists(dir + "/threshold.feedback_trace.png"));
 }
 
 TEST(Tool, GraphDrawsAnSvg) {

@@ -5,12 +5,13 @@
 // floor and wall (config/friend/scene.yaml).
 //
 // Topics: stereo/{left,right}/{image_raw,camera_info}, hand_camera/{image_raw,camera_info};
+// scene_markers (visualization_msgs/MarkerArray, latched: the world's planes for rviz);
 // services stereo/trigger, hand_camera/trigger (std_srvs/Trigger: render and publish now).
 // Private parameters (read live unless noted):
 //   camera/rate (Hz, 0 = only on trigger; default 5), hand_camera/rate (default 2),
 //   camera/illumination (1.0), camera/noise (gray levels, 1.5), camera/blur (px, 0.6),
 //   camera/color (false: mono8), camera/supersampling (at start, 2), scene (file, at start),
-//   marker_texture (PNG, at start; default: generated ARToolKit-like marker),
+//   marker (marker description YAML, at start; default config/markers/gripper.yaml),
 //   faults/drop_frame_probability, faults/corrupt_frame_probability,
 //   faults/reflection_probability (a specular highlight near the marker: outlier detections).
 #pragma once
@@ -51,15 +52,23 @@ struct WorldScene {
 
 // Loads config/friend/scene.yaml; throws naming the file and key on bad input.
 WorldScene loadWorldScene(const std::string& path);
-// The default gripper marker texture: black square border (1/4 of the side) around a white field
-// with an asymmetric black pattern (so its orientation is unique), like ARToolKit markers.
-cv::Mat defaultMarkerTexture(int pixels = 240);
+// The static world as one camera saw it last (noise-free radiance and depth), so that a camera
+// that has not moved re-renders only the gripper marker over it. Exact, not an approximation:
+// the world is static, and when the world hides part of the marker the view is rendered in full.
+struct WorldViewCache {
+  bool valid = false;
+  Eigen::Matrix4d camera_in_base = Eigen::Matrix4d::Zero();
+  cv::Mat image;  // world only, illumination 1, no blur, no noise
+  cv::Mat depth;  // CV_32F, 0 where nothing is hit
+};
 
-// Renders what one camera at `camera_in_base` sees: the world, the gripper marker at
-// `marker_in_base` (with its white plate), at the given options.
-cv::Mat renderView(const imagenets::render::Renderer& renderer, const WorldScene& world, const cv::Mat& marker_texture,
-                   double marker_size, const Eigen::Isometry3d& marker_in_base, const Eigen::Isometry3d& camera_in_base,
-                   const imagenets::render::RenderOptions& options);
+// Renders what one camera at `camera_in_base` sees: the world and the gripper marker plane
+// (`marker_plane`: texture and size, e.g. imagenets::marker::markerPlane) at `marker_in_base`.
+// With a cache, the world is rendered only when the camera moved.
+cv::Mat renderView(const imagenets::render::Renderer& renderer, const WorldScene& world,
+                   const imagenets::render::Plane& marker_plane, const Eigen::Isometry3d& marker_in_base,
+                   const Eigen::Isometry3d& camera_in_base, const imagenets::render::RenderOptions& options,
+                   WorldViewCache* cache = nullptr);
 
 class CameraSim {
  public:
@@ -71,6 +80,7 @@ class CameraSim {
     std::string name, frame;
     sensor_msgs::CameraInfo info;
     std::unique_ptr<imagenets::render::Renderer> renderer;
+    WorldViewCache cache;
     ros::Publisher image, camera_info;
   };
   void loop();
@@ -89,9 +99,11 @@ class CameraSim {
   ros::NodeHandle nh_, pnh_;
   const FriendSim& sim_;
   WorldScene world_;
-  cv::Mat marker_texture_;
+  imagenets::render::Plane marker_plane_;  // pose set per frame
+  double marker_size_ = 0.06;
   Camera left_, right_, hand_;
   ros::ServiceServer trigger_stereo_, trigger_hand_;
+  ros::Publisher scene_markers_;
   std::mutex render_mutex_, rng_mutex_;
   std::mt19937 rng_;
   std::uint64_t frame_ = 0;

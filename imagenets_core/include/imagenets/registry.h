@@ -45,9 +45,12 @@ class BlockRegistry {
   std::string pluginXml() const;
   // Known types closest to an unknown name (edit distance), best first.
   std::vector<std::string> suggest(const std::string& type, size_t max = 3) const;
+  // Type names claimed by two different classes (the first one wins); should be empty.
+  const std::vector<std::string>& conflicts() const { return conflicts_; }
 
  private:
   std::vector<std::unique_ptr<BlockInfo>> infos_;
+  std::vector<std::string> conflicts_;
 };
 
 namespace detail {
