@@ -69,11 +69,21 @@ TEST(InputPairing, OptionalInputsDoNotHoldARunBack) {
   EXPECT_EQ(stampOf((*set)[1]), 7.0);  // no stamp match: the latest value
 }
 
-TEST(InputPairing, ABlockWithoutRequiredInputsIsASource) {
-  InputPairing pairing({false}, PairingOptions{});
+TEST(InputPairing, ASourceRunsOnlyOnDemandButKeepsItsInputs) {
+  InputPairing pairing({false}, PairingOptions{}, true);
   EXPECT_TRUE(pairing.isSource());
   EXPECT_FALSE(pairing.add(0, image(1.0)));
   EXPECT_EQ(stampOf(pairing.latest()[0]), 1.0);
+}
+
+TEST(InputPairing, AllOptionalInputsRunOnEveryArrival) {
+  InputPairing pairing({false, false}, PairingOptions{});
+  auto set = pairing.add(0, image(1.0));
+  ASSERT_TRUE(set);
+  EXPECT_FALSE((*set)[1]);
+  set = pairing.add(1, image(1.0));
+  ASSERT_TRUE(set);
+  EXPECT_EQ(stampOf((*set)[0]), 1.0);
 }
 
 TEST(InputPairing, KeepsOnlyTheHistoryAskedFor) {

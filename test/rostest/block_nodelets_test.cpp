@@ -10,7 +10,7 @@
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <geometry_msgs/PointStamped.h>
 #include <gtest/gtest.h>
-#include <imagenets/BlockStatus.h>
+#include <imagenets/BlockNodeletStatus.h>
 #include <nodelet/NodeletList.h>
 #include <nodelet/NodeletLoad.h>
 #include <ros/ros.h>
@@ -38,8 +38,8 @@ class StatusWatch {
   explicit StatusWatch(const std::vector<std::string>& blocks) {
     ros::NodeHandle nh;
     for (const auto& b : blocks) {
-      subs_.push_back(nh.subscribe<imagenets::BlockStatus>(
-          b + "/status", 10, [this, b](const imagenets::BlockStatus::ConstPtr& s) {
+      subs_.push_back(nh.subscribe<imagenets::BlockNodeletStatus>(
+          b + "/status", 10, [this, b](const imagenets::BlockNodeletStatus::ConstPtr& s) {
             std::lock_guard<std::mutex> lock(mutex_);
             runs_[b] = static_cast<int>(s->runs);
           }));

@@ -8,12 +8,15 @@
 //     messages pass as ConstPtr (zero-copy).
 //   - several inputs are paired by header stamp (exact, or approximate within a slop);
 //     header-less inputs (std_msgs/Float64, ...) take their latest value.
-//   - a block without required inputs (a source) runs once, on a timer or on ~run.
+//   - a block without required or linked (remapped) inputs, a source, runs once, on a timer or
+//     on ~run; a block whose inputs are all optional but linked runs on every arrival.
 //   - properties come from ~private parameters (same checks and messages as net files) and can
 //     be changed live through the dynamic_reconfigure protocol (~set_parameters,
 //     ~parameter_descriptions, ~parameter_updates); a change re-runs the block on its cached
 //     inputs, which refreshes everything downstream.
-//   - ~run (std_srvs/Trigger) re-runs the block; ~status (latched imagenets/BlockStatus) reports.
+//   - ~run (std_srvs/Trigger) re-runs the block; ~status (latched imagenets/BlockNodeletStatus) reports.
+//   - a block running a net inside (imagenets/Executor) can publish every inner output port as
+//     ~internal/<block>/<port> (property publish_internal_ports), only while subscribed.
 // The logic lives in block_nodelet.cpp; this header stays light because every block includes it.
 #pragma once
 

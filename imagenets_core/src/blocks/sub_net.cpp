@@ -11,6 +11,7 @@
 
 #include "imagenets/executor.h"
 #include "imagenets/registry.h"
+#include "imagenets/sub_net_access.h"
 
 namespace imagenets {
 namespace {
@@ -58,7 +59,7 @@ std::string canonical(const std::string& path) {
 
 }  // namespace
 
-class SubNet : public Block {
+class SubNet : public Block, public SubNetAccess {
  public:
   SubNet() {
     addProperty<std::string>("net", "", "net file run as this block (relative to the including net)").path();
@@ -144,6 +145,7 @@ class SubNet : public Block {
   }
 
   const Net* subNet() const override { return executor_ ? &executor_->net() : nullptr; }
+  const Executor* subExecutor() const override { return executor_.get(); }
 
  private:
   struct InPort {

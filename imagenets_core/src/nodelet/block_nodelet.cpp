@@ -2,16 +2,20 @@
 #include "imagenets/block_nodelet.h"
 
 #include <chrono>
+#include <functional>
 #include <mutex>
 #include <set>
 
 #include <dynamic_reconfigure/Reconfigure.h>
-#include <imagenets/BlockStatus.h>
+#include <pluginlib/class_loader.hpp>
+#include <imagenets/BlockNodeletStatus.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
 #include "imagenets/net.h"
+#include "imagenets/executor.h"
 #include "imagenets/registry.h"
+#include "imagenets/sub_net_access.h"
 #include "input_pairing.h"
 #include "param_text.h"
 #include "reconfigure.h"
@@ -28,13 +32,15 @@ std::vector<PropertySpec> hostPropertySpecs() {
   specs.emplace_back("pairing_slop", PropertyKind::Double, 0.05,
                      "largest stamp difference (s) paired in approximate mode");
   specs.back().range(0.0, 3600.0);
-  specs.emplace_back("queue_size", PropertyKind::Int, 5, "messages kept per input (subscriber queue and pairing)");
+  specs.emplace_back("queue_size", PropertyKind::Int, 5,
+                     "messages kept per input (subscriber queue and pairing); load time only");
   specs.back().range(1, 1000);
   specs.emplace_back("latch", PropertyKind::Bool, false,
                      "latch the outputs (late subscribers get the last value; costs one serialisation per "
-                     "message); outputs of a source run `once` are always latched");
+                     "message); outputs of a source run `once` are always latched; load time only");
   specs.emplace_back("source_mode", PropertyKind::String, std::string("timer"),
-                     "a block without required inputs runs: once (at load), timer (every 1/source_rate s) or "
+                     "a source (a block without required or linked inputs) runs: once (at load), timer (every "
+                     "1/source_rate s) or "
                      "trigger (on ~run only)");
   specs.back().choices({"once", "timer", "trigger"});
   specs.emplace_back("source_rate", PropertyKind::Double, 1.0, "runs per second of a source in timer mode");
@@ -42,14 +48,41 @@ std::vector<PropertySpec> hostPropertySpecs() {
   return specs;
 }
 
+// A sub-net may use any block, but a manager loads only the library of the nodelet it was asked
+// for: load every library that declares imagenets nodelets (once per process; kept loaded).
+void loadBlockLibraries() {
+  static std::mutex mutex;
+  static pluginlib::ClassLoader<nodelet::Nodelet>* loader = nullptr;  // never unloaded
+  std::lock_guard<std::mutex> lock(mutex);
+  if (loader) return;
+  loader = new pluginlib::ClassLoader<nodelet::Nodelet>("nodelet", "nodelet::Nodelet");
+  std::set<std::string> done;
+  for (const std::string& cls : loader->getDeclaredClasses()) {
+    if (loader->getClassPackage(cls) != "imagenets") continue;
+    if (!done.insert(loader->getClassLibraryPath(cls)).second) continue;
+    try {
+      loader->loadLibraryForClass(cls);
+    } catch (const std::exception& e) {
+      ROS_DEBUG_STREAM("block library of " << cls << " not loaded: " << e.what());  // e.g. tests not built
+    }
+  }
+}
+
 class BlockHost {
  public:
-  BlockHost(std::unique_ptr<Block> block, std::string name, ros::NodeHandle pnh)
-      : block_(std::move(block)), name_(std::move(name)), pnh_(pnh) {
+  BlockHost(std::function<std::unique_ptr<Block>()> factory, std::string name, ros::NodeHandle pnh)
+      : factory_(std::move(factory)), block_(factory_()), name_(std::move(name)), pnh_(pnh) {
     const BlockInfo* info = BlockRegistry::instance().findByTypeId(typeid(*block_));
     if (info) block_->setInfo(info);
     type_ = info ? info->type : std::string("?");
-    for (PropertySpec& spec : hostPropertySpecs()) {
+    inner_ = dynamic_cast<const SubNetAccess*>(block_.get());
+    std::vector<PropertySpec> host = hostPropertySpecs();
+    if (inner_) {
+      host.emplace_back("publish_internal_ports", PropertyKind::Bool, false,
+                        "publish every output port of the inner net as ~internal/<block>/<port>, only while "
+                        "subscribed");
+    }
+    for (PropertySpec& spec : host) {
       if (!block_->findProperty(spec.name())) {
         host_values_[spec.name()] = spec.defaultValue();
         host_specs_.push_back(std::move(spec));
@@ -63,6 +96,7 @@ class BlockHost {
     std::vector<std::string> errors = loadParameters();
     if (errors.empty()) {
       try {
+        if (inner_) loadBlockLibraries();
         block_->configure();
       } catch (const std::exception& e) {
         errors.push_back(e.what());
@@ -76,9 +110,15 @@ class BlockHost {
     }
     allSpecs();  // the block's ports and properties are final now
 
+    // A source: no required input and no input linked (remapped). It runs once, on a timer or on
+    // ~run; any other block runs when its inputs arrive.
     std::vector<bool> required;
-    for (const PortSpec& p : block_->inputs()) required.push_back(!p.optional);
-    pairing_ = std::make_unique<InputPairing>(required, pairingOptions());
+    bool linked = false;
+    for (const PortSpec& p : block_->inputs()) {
+      required.push_back(!p.optional);
+      linked = linked || !p.optional || pnh_.resolveName("in/" + p.name) != pnh_.getNamespace() + "/in/" + p.name;
+    }
+    pairing_ = std::make_unique<InputPairing>(required, pairingOptions(), !linked);
     cached_inputs_.resize(block_->inputs().size());
 
     const bool latch = hostBool("latch") || (pairing_->isSource() && hostString("source_mode") == "once");
@@ -89,7 +129,7 @@ class BlockHost {
       subscribers_.push_back(p.type->subscribe(pnh_, "in/" + p.name, queue, [this, i](const Value& v) { onInput(i, v); }));
     }
 
-    status_pub_ = pnh_.advertise<imagenets::BlockStatus>("status", 1, true);
+    status_pub_ = pnh_.advertise<imagenets::BlockNodeletStatus>("status", 1, true);
     descriptions_pub_ = pnh_.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
     updates_pub_ = pnh_.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
     descriptions_pub_.publish(describeProperties(specs_));
@@ -98,6 +138,7 @@ class BlockHost {
     run_srv_ = pnh_.advertiseService("run", &BlockHost::onRunService, this);
     set_srv_ = pnh_.advertiseService("set_parameters", &BlockHost::onSetParameters, this);
     startSource();
+    publishInternalPorts();  // advertises the inner ports
     ROS_DEBUG_STREAM(describe() << ": loaded");
   }
 
@@ -227,8 +268,32 @@ class BlockHost {
         if (out) out.type->publish(publishers_[i], out);  // the pointer itself: zero-copy in-manager
       }
     }
+    publishInternalPorts();
     publishStatus();
     return error;
+  }
+
+  // publish_internal_ports: every inner output port becomes a topic; a value is published only
+  // while someone subscribes, and only when it is new (the inner net re-ran that block).
+  void publishInternalPorts() {
+    if (!inner_ || !hostBool("publish_internal_ports")) return;
+    const Executor* inner = inner_->subExecutor();
+    if (!inner) return;
+    if (internal_.empty()) {
+      for (const auto& node : inner->net().nodes()) {
+        for (const PortSpec& p : node.block->outputs()) {
+          internal_.push_back({node.name + "." + p.name,
+                               p.type->advertise(pnh_, "internal/" + node.name + "/" + p.name, 1, false), nullptr});
+        }
+      }
+    }
+    for (InternalPort& port : internal_) {
+      if (port.publisher.getNumSubscribers() == 0) continue;
+      const Value v = inner->output(port.block_port);
+      if (!v || v.data.get() == port.last_published) continue;
+      v.type->publish(port.publisher, v);
+      port.last_published = v.data.get();
+    }
   }
 
   bool onRunService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
@@ -266,7 +331,8 @@ class BlockHost {
   bool onSetParameters(dynamic_reconfigure::Reconfigure::Request& req,
                        dynamic_reconfigure::Reconfigure::Response& res) {
     std::lock_guard<std::mutex> lock(mutex_);
-    bool block_changed = false, host_changed = false;
+    PropertyValues block_changes, host_changes;
+    const PropertyValues before = currentValues();
     for (const auto& [name, text] : decodeRequest(req.config)) {
       const PropertySpec* spec = findSpec(name);
       if (!spec) {
@@ -277,31 +343,73 @@ class BlockHost {
       try {
         PropertyValue v = propertyFromRequest(*spec, text);
         if (spec->isPath()) v = resolvePath(std::get<std::string>(v), "");
-        const PropertyValues before = currentValues();
         auto old = before.find(name);
         if (old != before.end() && old->second == v) continue;
-        setValue(name, v);
-        pnh_.setParam(name, propertyToParam(v));  // the server keeps its parameters current
-        (block_->findProperty(name) ? block_changed : host_changed) = true;
+        if (!block_->findProperty(name) && (name == "latch" || name == "queue_size")) {
+          throw PropertyError("takes effect at load only (the topics are open); reload the nodelet to change it");
+        }
+        (block_->findProperty(name) ? block_changes : host_changes)[name] = v;
       } catch (const std::exception& e) {
         ROS_ERROR_STREAM(describe() << ": set_parameters: property '" << name << "': " << e.what());
       }
     }
-    if (host_changed) {
+    if (!block_changes.empty() && !reconfigureBlock(block_changes)) block_changes.clear();
+    for (const auto& [name, v] : host_changes) host_values_[name] = v;
+    if (!host_changes.empty()) {
       pairing_->setOptions(pairingOptions());
       startSource();
+    }
+    for (const auto* changes : {&block_changes, &host_changes}) {
+      for (const auto& [name, v] : *changes) pnh_.setParam(name, propertyToParam(v));  // params stay current
     }
     res.config = encodeProperties(specs_, currentValues());
     updates_pub_.publish(res.config);
     // A change re-runs the block on its cached inputs; its outputs refresh everything downstream.
-    if (block_changed && (have_inputs_ || pairing_->isSource())) runLocked();
+    if (!block_changes.empty() && (have_inputs_ || pairing_->isSource())) runLocked();
+    return true;
+  }
+
+  // Applies block property changes through a fresh, configured block: properties that configure()
+  // reads (a sub-net's `net`) take effect too, and a value configure() rejects leaves the running
+  // block as it was. The ports must stay the same, since topics are already wired.
+  bool reconfigureBlock(const PropertyValues& changes) {
+    std::unique_ptr<Block> fresh = factory_();
+    fresh->setInfo(block_->info());
+    try {
+      for (const auto& [name, v] : block_->propertyValues()) {
+        auto changed = changes.find(name);
+        fresh->setProperty(name, changed != changes.end() ? changed->second : v);
+      }
+      if (inner_) loadBlockLibraries();
+      fresh->configure();
+    } catch (const std::exception& e) {
+      ROS_ERROR_STREAM(describe() << ": set_parameters: change refused: " << e.what());
+      return false;
+    }
+    auto samePorts = [](const std::vector<PortSpec>& a, const std::vector<PortSpec>& b) {
+      if (a.size() != b.size()) return false;
+      for (size_t i = 0; i < a.size(); ++i) {
+        if (a[i].name != b[i].name || a[i].type != b[i].type || a[i].optional != b[i].optional) return false;
+      }
+      return true;
+    };
+    if (!samePorts(fresh->inputs(), block_->inputs()) || !samePorts(fresh->outputs(), block_->outputs())) {
+      ROS_ERROR_STREAM(describe() << ": set_parameters: change refused: it changes the block's ports; reload the "
+                                     "nodelet with the new parameters instead");
+      return false;
+    }
+    block_ = std::move(fresh);
+    inner_ = dynamic_cast<const SubNetAccess*>(block_.get());
+    internal_.clear();  // inner ports are advertised again for the new inner net
+    specs_.clear();
+    allSpecs();
     return true;
   }
 
   void publishUpdates() { updates_pub_.publish(encodeProperties(specs_, currentValues())); }
 
   void publishStatus() {
-    auto s = boost::make_shared<imagenets::BlockStatus>();
+    auto s = boost::make_shared<imagenets::BlockNodeletStatus>();
     s->header.stamp = ros::Time::now();
     s->block = name_;
     s->type = type_;
@@ -313,7 +421,16 @@ class BlockHost {
     status_pub_.publish(s);
   }
 
+  struct InternalPort {
+    std::string block_port;
+    ros::Publisher publisher;
+    const void* last_published;
+  };
+
+  std::function<std::unique_ptr<Block>()> factory_;
   std::unique_ptr<Block> block_;
+  const SubNetAccess* inner_ = nullptr;  // set for a block running a net inside
+  std::vector<InternalPort> internal_;
   std::string name_, type_;
   ros::NodeHandle pnh_;
   std::vector<PropertySpec> host_specs_;
@@ -341,7 +458,7 @@ BlockNodeletBase::BlockNodeletBase() = default;
 BlockNodeletBase::~BlockNodeletBase() = default;
 
 void BlockNodeletBase::onInit() {
-  host_ = std::make_unique<BlockHost>(createBlock(), getName(), getPrivateNodeHandle());
+  host_ = std::make_unique<BlockHost>([this] { return createBlock(); }, getName(), getPrivateNodeHandle());
   try {
     host_->start();
   } catch (...) {

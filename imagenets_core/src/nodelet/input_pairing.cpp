@@ -4,14 +4,9 @@
 
 namespace imagenets {
 
-InputPairing::InputPairing(std::vector<bool> required, PairingOptions options)
-    : required_(std::move(required)), options_(options), history_(required_.size()) {}
-
-bool InputPairing::isSource() const {
-  for (bool r : required_) {
-    if (r) return false;
-  }
-  return true;
+InputPairing::InputPairing(std::vector<bool> required, PairingOptions options, bool source)
+    : required_(std::move(required)), options_(options), source_(source), history_(required_.size()) {
+  for (bool r : required_) any_required_ = any_required_ || r;
 }
 
 ros::Time InputPairing::stampOf(const Value& v) {
@@ -54,11 +49,13 @@ std::optional<std::vector<Value>> InputPairing::add(size_t input, const Value& v
   if (isSource()) return std::nullopt;
 
   // The time this set is about: the arrival's stamp, or (for a time-less arrival) the newest
-  // stamp held by a required input.
+  // stamp held by a required input (by any input when none is required).
   ros::Time reference = stampOf(value);
   if (reference.isZero()) {
     for (size_t j = 0; j < history_.size() && reference.isZero(); ++j) {
-      if (j != input && required_[j] && !history_[j].empty()) reference = stampOf(history_[j].back());
+      if (j != input && (required_[j] || !any_required_) && !history_[j].empty()) {
+        reference = stampOf(history_[j].back());
+      }
     }
   }
   std::vector<Value> set(history_.size());

@@ -5,7 +5,8 @@
 // re-published input (a property changed upstream) pairs again with the unchanged ones.
 // A message with a zero stamp (a type without header, e.g. std_msgs/Float64, or an unset header)
 // carries no time: its input contributes its latest value to any set. Optional inputs contribute
-// their stamp match if there is one, else their latest value (or nothing).
+// their stamp match if there is one, else their latest value (or nothing); a block whose inputs are
+// all optional runs on every arrival.
 #pragma once
 
 #include <deque>
@@ -26,12 +27,12 @@ struct PairingOptions {
 
 class InputPairing {
  public:
-  // `required[i]`: input i must be present for a run.
-  InputPairing(std::vector<bool> required, PairingOptions options);
+  // `required[i]`: input i must be present for a run. `source`: the block runs on a timer or on
+  // demand, never on arrival (the host's choice for a block with no linked input).
+  InputPairing(std::vector<bool> required, PairingOptions options, bool source = false);
   void setOptions(const PairingOptions& options) { options_ = options; }
   const PairingOptions& options() const { return options_; }
-  // True when no input is required (a source: it runs on a timer or on demand, not on arrival).
-  bool isSource() const;
+  bool isSource() const { return source_; }
 
   // Records `value` on `input`; returns the complete input set this arrival makes, if any.
   std::optional<std::vector<Value>> add(size_t input, const Value& value);
@@ -44,7 +45,9 @@ class InputPairing {
   Value partner(size_t input, const ros::Time& stamp) const;
 
   std::vector<bool> required_;
+  bool any_required_ = false;
   PairingOptions options_;
+  bool source_ = false;
   std::vector<std::deque<Value>> history_;  // newest last
 };
 

@@ -1,0 +1,16 @@
+// Implemented by a block that runs a whole net inside (imagenets/Executor): lets a host look at
+// the inner net's cached values, e.g. the nodelet host's `publish_internal_ports`.
+#pragma once
+
+namespace imagenets {
+
+class Executor;
+
+class SubNetAccess {
+ public:
+  virtual ~SubNetAccess() = default;
+  // The inner executor (null before configure()); its public API is thread-safe.
+  virtual const Executor* subExecutor() const = 0;
+};
+
+}  // namespace imagenets
