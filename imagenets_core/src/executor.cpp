@@ -27,7 +27,8 @@ const char* statusName(BlockStatus status) {
 Executor::Executor(std::unique_ptr<Net> net, ExecutorOptions options) : net_(std::move(net)) {
   const size_t n = net_->nodes().size();
   int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-  pool_ = std::make_unique<ThreadPool>(std::max(1, threads));
+  // The thread that calls run() works too (it helps while it waits): N threads = N - 1 workers.
+  pool_ = std::make_unique<ThreadPool>(std::max(1, threads) - 1);
   outputs_.resize(n);
   external_inputs_.resize(n);
   for (size_t i = 0; i < n; ++i) {
@@ -74,7 +75,7 @@ std::unique_ptr<Executor> Executor::loadFile(const std::string& path, ExecutorOp
 
 Executor::~Executor() = default;
 
-int Executor::threads() const { return pool_->size(); }
+int Executor::threads() const { return pool_->size() + 1; }
 
 void Executor::markOutOfDate(int node) {
   // A block inside a feedback region changes the scores: the whole sweep must run again.

@@ -1,6 +1,6 @@
 // A fixed pool of worker threads. A thread that waits for work it posted helps run queued tasks
 // instead of sleeping, so nested waits (a feedback sweep inside a run, a sub-net inside a block)
-// can never starve the pool.
+// can never starve the pool; with 0 workers the waiting thread runs everything itself.
 #pragma once
 
 #include <condition_variable>
@@ -14,7 +14,7 @@ namespace imagenets {
 
 class ThreadPool {
  public:
-  explicit ThreadPool(int threads);
+  explicit ThreadPool(int workers);
   ~ThreadPool();
 
   int size() const { return static_cast<int>(workers_.size()); }
