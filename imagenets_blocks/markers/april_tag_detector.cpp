@@ -53,15 +53,7 @@ class AprilTagDetectorBlock : public Block {
     auto msg = marker::toMsg(d, options.family + ":" + std::to_string(options.id), header);
     if (d.found) msg->points.resize(4);
     ctx.output("detection", msg);
-    if (d.found) {
-      auto score = boost::make_shared<std_msgs::Float64>();
-      score->data = d.confidence;
-      ctx.output("confidence", score);
-      auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
-      pose->header = header;
-      pose->pose = marker::toPoseMsg(d.pose);
-      ctx.output("pose", pose);
-    }
+    marker::outputConfidenceAndPose(ctx, d, header);
   }
 };
 

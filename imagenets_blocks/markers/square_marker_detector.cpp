@@ -58,6 +58,17 @@ imagenets::MarkerDetectionPtr toMsg(const Detection& d, const std::string& marke
   return msg;
 }
 
+void outputConfidenceAndPose(Context& ctx, const Detection& d, const std_msgs::Header& header) {
+  if (!d.found) return;
+  auto score = boost::make_shared<std_msgs::Float64>();
+  score->data = d.confidence;
+  ctx.output("confidence", score);
+  auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
+  pose->header = header;
+  pose->pose = toPoseMsg(d.pose);
+  ctx.output("pose", pose);
+}
+
 }  // namespace marker
 
 namespace blocks {
@@ -109,15 +120,7 @@ class SquareMarkerDetector : public Block {
     options.min_confidence = ctx.property<double>("min_confidence");
     const marker::Detection d = marker::detect(gray, binary, camera, *desc, options);
     ctx.output("detection", marker::toMsg(d, desc->name, header));
-    if (d.found) {
-      auto score = boost::make_shared<std_msgs::Float64>();
-      score->data = d.confidence;
-      ctx.output("confidence", score);
-      auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
-      pose->header = header;
-      pose->pose = marker::toPoseMsg(d.pose);
-      ctx.output("pose", pose);
-    }
+    marker::outputConfidenceAndPose(ctx, d, header);
   }
 };
 
