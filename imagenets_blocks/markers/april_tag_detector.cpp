@@ -30,18 +30,7 @@ class AprilTagDetectorBlock : public Block {
   void process(Context& ctx) override {
     std_msgs::Header header;
     const cv::Mat gray = inputImage(ctx, "gray", {"mono8"}, nullptr, &header);
-    const auto info = ctx.input<sensor_msgs::CameraInfo>("camera_info");
-    if (!info) throw BlockError("input 'camera_info': missing");
-    render::CameraModel camera;
-    try {
-      camera = render::CameraModel::fromCameraInfo(*info);
-    } catch (const std::exception& e) {
-      throw BlockError(std::string("input 'camera_info': ") + e.what());
-    }
-    if (gray.cols != camera.width || gray.rows != camera.height) {
-      throw BlockError("input 'gray': image is " + std::to_string(gray.cols) + "x" + std::to_string(gray.rows) +
-                       " but camera_info is " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
-    }
+    const render::CameraModel camera = marker::inputCameraModel(ctx, gray);
     marker::AprilTagOptions options;
     options.family = ctx.property<std::string>("family");
     options.id = ctx.property<int>("id");

@@ -58,6 +58,22 @@ imagenets::MarkerDetectionPtr toMsg(const Detection& d, const std::string& marke
   return msg;
 }
 
+render::CameraModel inputCameraModel(const Context& ctx, const cv::Mat& gray) {
+  const auto info = ctx.input<sensor_msgs::CameraInfo>("camera_info");
+  if (!info) throw BlockError("input 'camera_info': missing");
+  render::CameraModel camera;
+  try {
+    camera = render::CameraModel::fromCameraInfo(*info);
+  } catch (const std::exception& e) {
+    throw BlockError(std::string("input 'camera_info': ") + e.what());
+  }
+  if (gray.cols != camera.width || gray.rows != camera.height) {
+    throw BlockError("input 'gray': image is " + std::to_string(gray.cols) + "x" + std::to_string(gray.rows) +
+                     " but camera_info is " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
+  }
+  return camera;
+}
+
 void outputConfidenceAndPose(Context& ctx, const Detection& d, const std_msgs::Header& header) {
   if (!d.found) return;
   auto score = boost::make_shared<std_msgs::Float64>();
@@ -95,18 +111,7 @@ class SquareMarkerDetector : public Block {
     std_msgs::Header header;
     const cv::Mat binary = inputImage(ctx, "image", {"mono8"});
     const cv::Mat gray = inputImage(ctx, "gray", {"mono8"}, nullptr, &header);
-    const auto info = ctx.input<sensor_msgs::CameraInfo>("camera_info");
-    if (!info) throw BlockError("input 'camera_info': missing");
-    render::CameraModel camera;
-    try {
-      camera = render::CameraModel::fromCameraInfo(*info);
-    } catch (const std::exception& e) {
-      throw BlockError(std::string("input 'camera_info': ") + e.what());
-    }
-    if (gray.cols != camera.width || gray.rows != camera.height) {
-      throw BlockError("input 'gray': image is " + std::to_string(gray.cols) + "x" + std::to_string(gray.rows) +
-                       " but camera_info is " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
-    }
+    const render::CameraModel camera = marker::inputCameraModel(ctx, gray);
     if (binary.size() != gray.size()) throw BlockError("input 'image': size differs from input 'gray'");
     const std::string path = ctx.property<std::string>("marker");
     if (path.empty()) throw BlockError("property 'marker': no marker file set");
