@@ -72,6 +72,25 @@ void fill(Out& out, const Result& r, const std::string& base, const std::string&
   out.compute_time = r.compute_time;
 }
 
+// The detected marker points of one image drawn on it (bgr8): the outer corners as a red
+// outline, the inner points green, and a line of text saying what was found. Used for the PNG
+// files beside the calibration and for the live ~detections/... images.
+cv::Mat drawObservation(const sensor_msgs::ImageConstPtr& img, const MarkerObservation& o, const char* side) {
+  cv::Mat colour;
+  cv::cvtColor(cv_bridge::toCvShare(img, "mono8")->image, colour, cv::COLOR_GRAY2BGR);
+  for (size_t k = 0; k < o.points.size(); ++k) {
+    const cv::Point2d p(o.points[k].x(), o.points[k].y());
+    cv::circle(colour, p, 5, k < 4 ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 200, 0), 2, cv::LINE_AA);
+    if (k < 4) cv::line(colour, p, cv::Point2d(o.points[(k + 1) % 4].x(), o.points[(k + 1) % 4].y()),
+                        cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+  }
+  char text[160];
+  std::snprintf(text, sizeof text, "%s: %s, confidence %.2f, threshold %.0f", side,
+                o.found ? "marker found" : "marker NOT found", o.confidence, o.threshold);
+  cv::putText(colour, text, cv::Point(10, 30), cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 255, 255), 2);
+  return colour;
+}
+
 }  // namespace
 
 CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -114,6 +133,11 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   const std::string trigger = pnh_.param<std::string>("trigger_service", stereo + "/trigger");
   if (!trigger.empty()) trigger_ = nh_.serviceClient<std_srvs::Trigger>(trigger);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+  for (int i = 0; i < 2; ++i) {
+    const std::string side = i == 0 ? "detections/left/" : "detections/right/";
+    detection_image_pub_[i] = pnh_.advertise<sensor_msgs::Image>(side + "image", 1, true);
+    detection_info_pub_[i] = pnh_.advertise<sensor_msgs::CameraInfo>(side + "camera_info", 1, true);
+  }
 
   // The last saved calibration (or a replayed file) is published at start-up.
   const std::string replay = pnh_.param<std::string>("replay", "");
@@ -473,6 +497,7 @@ std::vector<Sample> CalibrationNode::collectSamples(int n, const std::string& me
     const auto t0 = std::chrono::steady_clock::now();
     samples.push_back(measure(pair, *joints));
     detection_time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    publishDetections(pair, samples.back());
     {
       std::lock_guard<std::mutex> lock(data_mutex_);
       last_pair_ = {pair.left, pair.right, pair.left_info, pair.right_info};
@@ -497,19 +522,7 @@ std::string CalibrationNode::savePictures(const Sample& sample) {
   try {
     for (int i = 0; i < 2; ++i) {
       const auto& img = i == 0 ? pair.left : pair.right;
-      const MarkerObservation& o = i == 0 ? sample.left : sample.right;
-      cv::Mat colour;
-      cv::cvtColor(cv_bridge::toCvShare(img, "mono8")->image, colour, cv::COLOR_GRAY2BGR);
-      for (size_t k = 0; k < o.points.size(); ++k) {
-        const cv::Point2d p(o.points[k].x(), o.points[k].y());
-        cv::circle(colour, p, 5, k < 4 ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 200, 0), 2, cv::LINE_AA);
-        if (k < 4) cv::line(colour, p, cv::Point2d(o.points[(k + 1) % 4].x(), o.points[(k + 1) % 4].y()),
-                            cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
-      }
-      char text[160];
-      std::snprintf(text, sizeof text, "%s: %s, confidence %.2f, threshold %.0f", i == 0 ? "left" : "right",
-                    o.found ? "marker found" : "marker NOT found", o.confidence, o.threshold);
-      cv::putText(colour, text, cv::Point(10, 30), cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 255, 255), 2);
+      const cv::Mat colour = drawObservation(img, i == 0 ? sample.left : sample.right, i == 0 ? "left" : "right");
       const std::string path = stem + (i == 0 ? "_left.png" : "_right.png");
       const std::string tmp = stem + ".tmp.png";
       if (!cv::imwrite(tmp, colour) || std::rename(tmp.c_str(), path.c_str()) != 0) {
@@ -521,6 +534,20 @@ std::string CalibrationNode::savePictures(const Sample& sample) {
     ROS_WARN("pictures not saved: %s", e.what());
   }
   return written;
+}
+
+void CalibrationNode::publishDetections(const StereoPair& pair, const Sample& sample) {
+  // Always drawn (a few ms), so a late subscriber of the latched topic gets the newest sample.
+  for (int i = 0; i < 2; ++i) {
+    const auto& img = i == 0 ? pair.left : pair.right;
+    try {
+      const cv::Mat colour = drawObservation(img, i == 0 ? sample.left : sample.right, i == 0 ? "left" : "right");
+      detection_image_pub_[i].publish(cv_bridge::CvImage(img->header, "bgr8", colour).toImageMsg());
+      detection_info_pub_[i].publish(i == 0 ? pair.left_info : pair.right_info);
+    } catch (const std::exception& e) {
+      ROS_WARN("detection image of the %s camera not published: %s", i == 0 ? "left" : "right", e.what());
+    }
+  }
 }
 
 void CalibrationNode::publish(const Result& result, const std::string& frame) {

@@ -7,11 +7,15 @@
 #include <string>
 #include <vector>
 
+#include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 
 namespace friend_hw_sim {
 struct RobotDescription;
+}
+namespace tf2_ros {
+class Buffer;
 }
 
 namespace imagenets {
@@ -33,6 +37,16 @@ sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_ms
 
 // The robot description named by a block's `description` property ("" = the shipped one).
 const friend_hw_sim::RobotDescription& robotDescription(const std::string& path);
+
+// The process's TF buffer, filled by one tf2_ros listener (own spin thread) started on first use;
+// call ensureRosNode() first. Shared so that every block sees the history since the first lookup.
+tf2_ros::Buffer& tfBuffer();
+
+// Pose of `source` in `target` at `stamp` (0 = latest), waiting up to `timeout` s. Throws
+// BlockError naming both frames, the time and TF's reason (and the frames TF knows when one of
+// them is unknown).
+geometry_msgs::TransformStamped lookupTransform(const tf2_ros::Buffer& buffer, const std::string& target,
+                                                const std::string& source, const ros::Time& stamp, double timeout);
 
 // Positions of `names` in `state` (throws BlockError naming the missing joint and the port).
 std::vector<double> positionsOf(const sensor_msgs::JointState& state, const std::vector<std::string>& names,

@@ -13,6 +13,8 @@
 //                       pth_fixed_point_nominal; tf: pth_fixed_point -> calibrated stereo optical
 //                       frames at the current pan/tilt (paper 4.3: extrinsics from TF)
 //   ~markers            visualization_msgs/MarkerArray: marker poses of all samples (latched)
+//   ~detections/{left,right}/image   bgr8, the detected marker points drawn, per sample as it is
+//                       measured (latched), with ~detections/{left,right}/camera_info beside it
 // Parameters (private): description, marker, calibration_file, redundancy (5), method (joint),
 //   arm_action, head_action, joint_states, stereo_namespace, camera_timeout (s), motion_timeout
 //   (s), speed_scale, settle_time (s), reapproach (bool), poses_per_loop (joint method, 2), fusion/max_position_difference (m),
@@ -82,6 +84,7 @@ class CalibrationNode {
   Sample measure(const StereoPair& pair, const sensor_msgs::JointState& joints) const;
   void publish(const Result& result, const std::string& frame);
   std::string savePictures(const Sample& sample);
+  void publishDetections(const StereoPair& pair, const Sample& sample);
   void publishSampleMarkers(const Result& result);
 
   ros::NodeHandle nh_, pnh_;
@@ -105,7 +108,7 @@ class CalibrationNode {
   std::unique_ptr<actionlib::SimpleActionServer<imagenets::CalibrateAction>> action_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   tf2_ros::TransformBroadcaster tf_;
-  ros::Publisher markers_pub_;
+  ros::Publisher markers_pub_, detection_image_pub_[2], detection_info_pub_[2];
 
   std::mutex data_mutex_;  // guards the latest sensor data below
   sensor_msgs::JointStateConstPtr joints_;
