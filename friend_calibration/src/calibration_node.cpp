@@ -78,16 +78,19 @@ void fill(Out& out, const Result& r, const std::string& base, const std::string&
 cv::Mat drawObservation(const sensor_msgs::ImageConstPtr& img, const MarkerObservation& o, const char* side) {
   cv::Mat colour;
   cv::cvtColor(cv_bridge::toCvShare(img, "mono8")->image, colour, cv::COLOR_GRAY2BGR);
+  // Line widths grow with the image so the overlay stays visible when shown scaled down (rviz).
+  const int w = std::max(1, colour.cols / 400);
   for (size_t k = 0; k < o.points.size(); ++k) {
     const cv::Point2d p(o.points[k].x(), o.points[k].y());
-    cv::circle(colour, p, 5, k < 4 ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 200, 0), 2, cv::LINE_AA);
+    cv::circle(colour, p, 3 + 2 * w, k < 4 ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 200, 0), w, cv::LINE_AA);
     if (k < 4) cv::line(colour, p, cv::Point2d(o.points[(k + 1) % 4].x(), o.points[(k + 1) % 4].y()),
-                        cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+                        cv::Scalar(0, 0, 255), w, cv::LINE_AA);
   }
   char text[160];
   std::snprintf(text, sizeof text, "%s: %s, confidence %.2f, threshold %.0f", side,
                 o.found ? "marker found" : "marker NOT found", o.confidence, o.threshold);
-  cv::putText(colour, text, cv::Point(10, 30), cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 255, 255), 2);
+  cv::putText(colour, text, cv::Point(10, 20 + 20 * w), cv::FONT_HERSHEY_SIMPLEX, 0.5 * w, cv::Scalar(0, 255, 255), w,
+              cv::LINE_AA);
   return colour;
 }
 
