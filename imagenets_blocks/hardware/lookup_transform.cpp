@@ -25,10 +25,15 @@ class LookupTransform : public Block {
     addProperty<double>("timeout", 1.0, "seconds to wait for the transform to become available").range(0.0, 600.0);
   }
 
-  // In a running node (the nodelet host) TF is listened to from load time on, so the history
-  // covers the first images; the command line tool starts listening at the first lookup.
+  // TF is listened to from load time on, so the history covers images taken after the net was
+  // loaded (a one-shot `imagenets run` grabs its image after loading). Without a master the
+  // lookup reports it when the block runs.
   void configure() override {
-    if (ros::isStarted()) hardware::tfBuffer();
+    try {
+      hardware::ensureRosNode();
+      hardware::tfBuffer();
+    } catch (const BlockError&) {
+    }
   }
 
   void process(Context& ctx) override {
