@@ -64,7 +64,7 @@ TEST(LookupTransform, FailureNamesBothFramesAndTheKnownOnes) {
   }
 }
 
-TEST(LookupTransform, EmptyFramePropertiesAreNamedBeforeRosIsTouched) {
+TEST(LookupTransform, EmptyFramePropertiesAreNamed) {
   BlockHarness h("imagenets/LookupTransform");
   EXPECT_EQ(h.block().inputs().size(), 1u);
   h.set("source_frame", std::string(""));
