@@ -425,8 +425,9 @@ std::vector<Sample> CalibrationNode::collectSamples(int n, const std::string& me
   std::vector<Sample> samples;
   for (int k = 0; k < n; ++k) {
     if (hooks.progress) hooks.progress(k + 1, n, "moving");
-    if (reapproach_ && k > 0 && method == "paper") {
-      // Every loop of the paper's procedure comes to the calibration pose anew.
+    if (reapproach_ && method == "paper") {
+      // Every loop of the paper's procedure comes to the calibration pose anew (the first one
+      // too: the same approach whatever pose the robot starts from).
       CalibrationPose away = poses[k];
       away.arm[3] -= 10 * kDeg;
       moveBoth(away, k, hooks);
