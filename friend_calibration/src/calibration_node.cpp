@@ -72,6 +72,23 @@ void fill(Out& out, const Result& r, const std::string& base, const std::string&
   out.compute_time = r.compute_time;
 }
 
+// The action's result and the service's response are one message definition (same fields, same
+// MD5): converted through serialisation, so a field added to both needs no copying code.
+template <class To, class From>
+To sameMessage(const From& from) {
+  if (std::string(ros::message_traits::md5sum<To>()) != ros::message_traits::md5sum<From>()) {
+    throw std::logic_error(std::string(ros::message_traits::datatype<From>()) + " and " +
+                           ros::message_traits::datatype<To>() + " differ: keep their fields identical");
+  }
+  std::vector<uint8_t> bytes(ros::serialization::serializationLength(from));
+  ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  ros::serialization::serialize(out, from);
+  To to;
+  ros::serialization::IStream in(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  ros::serialization::deserialize(in, to);
+  return to;
+}
+
 }  // namespace
 
 CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -209,20 +226,7 @@ void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
   };
   hooks.cancelled = [this] { return action_->isPreemptRequested() || !ros::ok(); };
   const auto res = run(req, hooks);
-  imagenets::CalibrateResult result;
-  result.success = res.success;
-  result.message = res.message;
-  result.fixed_point = res.fixed_point;
-  result.std_dev_translation = res.std_dev_translation;
-  result.std_dev_rotation = res.std_dev_rotation;
-  result.samples_used = res.samples_used;
-  result.samples_rejected = res.samples_rejected;
-  result.rejected_samples = res.rejected_samples;
-  result.residual_translation = res.residual_translation;
-  result.residual_rotation = res.residual_rotation;
-  result.compute_time = res.compute_time;
-  result.total_time = res.total_time;
-  result.file = res.file;
+  const auto result = sameMessage<imagenets::CalibrateResult>(res);
   if (res.success) {
     action_->setSucceeded(result);
   } else if (action_->isPreemptRequested()) {
