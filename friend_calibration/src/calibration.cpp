@@ -66,6 +66,34 @@ double angleBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return imagenets::frames::rotationAngle(Eigen::Quaterniond(a.rotation()), Eigen::Quaterniond(b.rotation()));
 }
 
+std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, const std::string& method) {
+  const auto& d = model.description();
+  std::vector<CalibrationPose> poses;
+  if (method == "paper") {
+    // The paper's procedure: the same calibration pose every time.
+    for (int k = 0; k < n; ++k) poses.push_back({d.arm_calibration_pose, d.head_calibration_pose});
+    return poses;
+  }
+  // Varied poses: the wrist turns the marker (so its offset error and the arm's joint offsets do
+  // not bias every sample the same way) and the head follows it, centred in the stereo view.
+  // Each pair turns different joints both ways, so any five poses move every identifiable joint.
+  static const std::vector<std::vector<double>> variations_deg{
+      {0, 0, 0, 0, 0, 0, 0},     {0, 0, 0, 0, 10, 0, 25},    {0, 0, 0, 0, -10, 0, -25}, {0, 8, 0, -8, 0, 12, 0},
+      {0, -8, 0, 8, 0, -12, 0},  {6, 0, 8, 0, 0, 0, 12},     {-6, 0, -8, 0, 0, 0, -12}, {0, 5, 0, 5, 12, -8, 0},
+      {0, -5, 0, -5, -12, 8, 0}, {4, 4, 4, 4, 4, 4, 4}};
+  for (int k = 0; k < n; ++k) {
+    const auto& v = variations_deg[k % variations_deg.size()];
+    CalibrationPose p;
+    p.arm = d.arm_calibration_pose;
+    for (size_t j = 0; j < p.arm.size() && j < v.size(); ++j) p.arm[j] += v[j] * M_PI / 180.0;
+    const auto look = model.lookAt(model.marker(p.arm).translation(),
+                                   {d.head_calibration_pose[0], d.head_calibration_pose[1]});
+    p.head = {look[0], look[1]};
+    poses.push_back(p);
+  }
+  return poses;
+}
+
 Eigen::Isometry3d gripperMarkerInRobot(const RobotModel& model, const std::vector<double>& arm_q) {
   return model.marker(arm_q);
 }
@@ -406,10 +434,23 @@ Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std
     throw std::invalid_argument("unknown calibration method '" + method + "' (expected 'paper' or 'joint')");
   }
   const auto start = std::chrono::steady_clock::now();
-  for (auto& s : samples) solveSample(model, s, limits);
+  FusionLimits tightened = limits;
+  std::vector<double> reprojection;
+  for (const auto& s : samples) {
+    for (const auto* o : {&s.left, &s.right}) {
+      if (o->found) reprojection.push_back(o->reprojection_error);
+    }
+  }
+  if (limits.relative_reprojection_error > 0 && !reprojection.empty()) {
+    std::nth_element(reprojection.begin(), reprojection.begin() + reprojection.size() / 2, reprojection.end());
+    const double typical = reprojection[reprojection.size() / 2];
+    tightened.max_reprojection_error = std::min(
+        limits.max_reprojection_error, std::max(limits.min_reprojection_error, limits.relative_reprojection_error * typical));
+  }
+  for (auto& s : samples) solveSample(model, s, tightened);
   Result r = combineRedundantSamples(std::move(samples), options);
   r.marker_offset = model.description().marker.pose;
-  if (method == "joint") r = solveJointly(model, r, limits);
+  if (method == "joint") r = solveJointly(model, r, tightened);
   r.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

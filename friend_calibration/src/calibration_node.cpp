@@ -94,6 +94,23 @@ cv::Mat drawObservation(const sensor_msgs::ImageConstPtr& img, const MarkerObser
   return colour;
 }
 
+// The action's result and the service's response are one message definition (same fields, same
+// MD5): converted through serialisation, so a field added to both needs no copying code.
+template <class To, class From>
+To sameMessage(const From& from) {
+  if (std::string(ros::message_traits::md5sum<To>()) != ros::message_traits::md5sum<From>()) {
+    throw std::logic_error(std::string(ros::message_traits::datatype<From>()) + " and " +
+                           ros::message_traits::datatype<To>() + " differ: keep their fields identical");
+  }
+  std::vector<uint8_t> bytes(ros::serialization::serializationLength(from));
+  ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  ros::serialization::serialize(out, from);
+  To to;
+  ros::serialization::IStream in(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  ros::serialization::deserialize(in, to);
+  return to;
+}
+
 }  // namespace
 
 CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -236,20 +253,7 @@ void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
   };
   hooks.cancelled = [this] { return action_->isPreemptRequested() || !ros::ok(); };
   const auto res = run(req, hooks);
-  imagenets::CalibrateResult result;
-  result.success = res.success;
-  result.message = res.message;
-  result.fixed_point = res.fixed_point;
-  result.std_dev_translation = res.std_dev_translation;
-  result.std_dev_rotation = res.std_dev_rotation;
-  result.samples_used = res.samples_used;
-  result.samples_rejected = res.samples_rejected;
-  result.rejected_samples = res.rejected_samples;
-  result.residual_translation = res.residual_translation;
-  result.residual_rotation = res.residual_rotation;
-  result.compute_time = res.compute_time;
-  result.total_time = res.total_time;
-  result.file = res.file;
+  const auto result = sameMessage<imagenets::CalibrateResult>(res);
   if (res.success) {
     action_->setSucceeded(result);
   } else if (action_->isPreemptRequested()) {
@@ -337,35 +341,7 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
   return res;
 }
 
-std::vector<CalibrationNode::Pose> CalibrationNode::plan(int n, const std::string& method) const {
-  const auto& d = model_.description();
-  std::vector<Pose> poses;
-  if (method == "paper") {
-    // The paper's procedure: the same calibration pose every time.
-    for (int k = 0; k < n; ++k) poses.push_back({d.arm_calibration_pose, d.head_calibration_pose});
-    return poses;
-  }
-  // Varied poses: the wrist turns the marker (so its offset error and the arm's joint offsets do
-  // not bias every sample the same way) and the head follows it, centred in the stereo view.
-  // Each pair turns different joints both ways, so any five poses move every identifiable joint.
-  static const std::vector<std::vector<double>> variations_deg{
-      {0, 0, 0, 0, 0, 0, 0},     {0, 0, 0, 0, 10, 0, 25},    {0, 0, 0, 0, -10, 0, -25}, {0, 8, 0, -8, 0, 12, 0},
-      {0, -8, 0, 8, 0, -12, 0},  {6, 0, 8, 0, 0, 0, 12},     {-6, 0, -8, 0, 0, 0, -12}, {0, 5, 0, 5, 12, -8, 0},
-      {0, -5, 0, -5, -12, 8, 0}, {4, 4, 4, 4, 4, 4, 4}};
-  for (int k = 0; k < n; ++k) {
-    const auto& v = variations_deg[k % variations_deg.size()];
-    Pose p;
-    p.arm = d.arm_calibration_pose;
-    for (size_t j = 0; j < p.arm.size() && j < v.size(); ++j) p.arm[j] += v[j] * kDeg;
-    const auto look = model_.lookAt(model_.marker(p.arm).translation(),
-                                    {d.head_calibration_pose[0], d.head_calibration_pose[1]});
-    p.head = {look[0], look[1]};
-    poses.push_back(p);
-  }
-  return poses;
-}
-
-void CalibrationNode::moveBoth(const Pose& pose, int sample, const Hooks& hooks) {
+void CalibrationNode::moveBoth(const CalibrationPose& pose, int sample, const Hooks& hooks) {
   imagenets::MoveJointsGoal arm_goal, head_goal;
   arm_goal.positions = pose.arm;
   arm_goal.speed_scale = speed_scale_;
@@ -476,13 +452,14 @@ std::vector<Sample> CalibrationNode::collectSamples(int n, const std::string& me
                                " action server is not available (is the robot / friend_sim running?)");
     }
   }
-  const auto poses = plan(n, method);
+  const auto poses = calibrationPoses(model_, n, method);
   std::vector<Sample> samples;
   for (int k = 0; k < n; ++k) {
     if (hooks.progress) hooks.progress(k + 1, n, "moving");
-    if (reapproach_ && k > 0 && method == "paper") {
-      // Every loop of the paper's procedure comes to the calibration pose anew.
-      Pose away = poses[k];
+    if (reapproach_ && method == "paper") {
+      // Every loop of the paper's procedure comes to the calibration pose anew (the first one
+      // too: the same approach whatever pose the robot starts from).
+      CalibrationPose away = poses[k];
       away.arm[3] -= 10 * kDeg;
       moveBoth(away, k, hooks);
     }

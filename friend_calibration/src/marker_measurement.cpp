@@ -67,30 +67,45 @@ MarkerObservation detectMarkerRobustly(const cv::Mat& gray, const sensor_msgs::C
   // pattern confidence); the chosen threshold is then detected once more with it.
   mk::DetectorOptions sweep = detector;
   sweep.refine_passes = 0;
-  auto tryThreshold = [&](int t, const mk::DetectorOptions& o) {
-    cv::Mat binary;
-    cv::threshold(view, binary, t, 255, cv::THRESH_BINARY);
+  auto detectIn = [&](const cv::Mat& binary, int t, const mk::DetectorOptions& o) {
     Trial trial;
     trial.threshold = t;
     trial.detection = mk::detect(view, binary, cropped, marker, o);
     return trial;
   };
-  Trial best;
-  bool any = false;
-  for (int t = options.coarse_from; t <= options.coarse_to; t += options.coarse_step) {
-    Trial trial = tryThreshold(t, sweep);
-    if (!any || better(trial, best)) best = trial;
-    any = true;
+  auto tryThreshold = [&](int t, const mk::DetectorOptions& o) {
+    cv::Mat binary;
+    cv::threshold(view, binary, t, 255, cv::THRESH_BINARY);
+    return detectIn(binary, t, o);
+  };
+  // The informed first guess: Otsu's threshold of the region (marker black and white against
+  // the background). Under even light it is as good as any other, and the sweep is skipped.
+  cv::Mat otsu_binary;
+  const int otsu = static_cast<int>(cv::threshold(view, otsu_binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU));
+  Trial best = detectIn(otsu_binary, otsu, sweep);
+  bool done = false;
+  if (options.good_confidence > 0 && best.detection.found && best.detection.confidence >= options.good_confidence) {
+    Trial refined = detectIn(otsu_binary, otsu, detector);
+    if (refined.detection.found && refined.detection.reprojection_error <= options.good_reprojection_px) {
+      best = refined;
+      done = true;
+    }
   }
-  if (best.detection.found && options.fine_step > 0) {
-    const int centre = best.threshold;
-    for (int t = centre - options.fine_radius; t <= centre + options.fine_radius; t += options.fine_step) {
-      if (t == centre || t < 1 || t > 254) continue;
+  if (!done) {
+    for (int t = options.coarse_from; t <= options.coarse_to; t += options.coarse_step) {
       Trial trial = tryThreshold(t, sweep);
       if (better(trial, best)) best = trial;
     }
+    if (best.detection.found && options.fine_step > 0) {
+      const int centre = best.threshold;
+      for (int t = centre - options.fine_radius; t <= centre + options.fine_radius; t += options.fine_step) {
+        if (t == centre || t < 1 || t > 254) continue;
+        Trial trial = tryThreshold(t, sweep);
+        if (better(trial, best)) best = trial;
+      }
+    }
+    if (best.detection.found && detector.refine_passes > 0) best = tryThreshold(best.threshold, detector);
   }
-  if (best.detection.found && detector.refine_passes > 0) best = tryThreshold(best.threshold, detector);
   MarkerObservation obs;
   obs.found = best.detection.found;
   obs.confidence = best.detection.confidence;

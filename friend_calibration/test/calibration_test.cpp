@@ -131,6 +131,31 @@ TEST_F(Fixture, JointSolutionRemovesTheMarkerOffsetBiasThatThePaperMethodKeeps) 
   EXPECT_LT(angleBetween(joint.marker_offset, true_marker), 0.02 * kDeg);
 }
 
+TEST_F(Fixture, ADetectionFittingFarWorseThanTheOthersIsNotUsed) {
+  // Clean corners fit to ~0.015 px here (limit 5 x median = 0.08 px); a reflection left one right detection at 0.11 px (below
+  // the absolute limit of 0.15 px, far above this camera's noise) and moved it by 1 mm.
+  std::vector<Sample> samples;
+  for (int k = 0; k < 5; ++k) {
+    Sample s = exactSample(arm(), head(), nominalMarker());
+    s.left.reprojection_error = s.right.reprojection_error = 0.01 + 0.002 * k;
+    samples.push_back(s);
+  }
+  samples[2].right.reprojection_error = 0.11;
+  samples[2].right.pose.translation().x() += 0.001;
+  const Result r = calibrate(model, samples, "paper", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_EQ(r.samples[2].fusion, "left");
+  EXPECT_NE(r.samples[2].reason.find("right detection rejected: reprojection error 0.110 px > 0.080 px"),
+            std::string::npos) << r.samples[2].reason;
+  EXPECT_LT((r.fixed_point.translation() - truth.translation()).norm(), 1e-9);
+
+  // Off: the absolute limit alone lets it through (averaged with the left one).
+  FusionLimits absolute_only;
+  absolute_only.relative_reprojection_error = 0;
+  const Result loose = calibrate(model, samples, "paper", absolute_only, CombineOptions());
+  EXPECT_EQ(loose.samples[2].fusion, "both");
+}
+
 TEST_F(Fixture, UnknownMethodIsAnError) {
   EXPECT_THROW(calibrate(model, {exactSample(arm(), head(), nominalMarker())}, "magic", FusionLimits(), CombineOptions()),
                std::invalid_argument);

@@ -287,6 +287,23 @@ render::RenderOptions CameraSim::options(std::uint64_t seed) {
   return o;
 }
 
+void addSpecularHighlight(cv::Mat& image, const cv::Point2d& centre, double sigma, double amplitude) {
+  const int r = static_cast<int>(3 * sigma) + 1;
+  const cv::Rect roi = cv::Rect(static_cast<int>(centre.x) - r, static_cast<int>(centre.y) - r, 2 * r + 1, 2 * r + 1) &
+                       cv::Rect(0, 0, image.cols, image.rows);
+  for (int y = roi.y; y < roi.y + roi.height; ++y) {
+    uchar* row = image.ptr<uchar>(y);
+    for (int x = roi.x; x < roi.x + roi.width; ++x) {
+      const double d2 = (x - centre.x) * (x - centre.x) + (y - centre.y) * (y - centre.y);
+      const double add = amplitude * std::exp(-d2 / (2 * sigma * sigma));
+      for (int ch = 0; ch < image.channels(); ++ch) {
+        uchar& v = row[x * image.channels() + ch];
+        v = cv::saturate_cast<uchar>(v + add);
+      }
+    }
+  }
+}
+
 bool CameraSim::applyFaults(cv::Mat& image, const Camera& cam, const Eigen::Isometry3d& camera_in_base,
                             const Eigen::Isometry3d& marker_in_base) {
   double p_drop = 0, p_corrupt = 0, p_reflection = 0;
@@ -306,20 +323,7 @@ bool CameraSim::applyFaults(cv::Mat& image, const Camera& cam, const Eigen::Isom
       const cv::Point2d centre(px.x + (u(rng_) - 0.5) * side, px.y + (u(rng_) - 0.5) * side);
       const double sigma = side * (0.12 + 0.15 * u(rng_));
       const double amplitude = 200 + 100 * u(rng_);
-      const int r = static_cast<int>(3 * sigma) + 1;
-      const cv::Rect roi = cv::Rect(static_cast<int>(centre.x) - r, static_cast<int>(centre.y) - r, 2 * r + 1, 2 * r + 1) &
-                           cv::Rect(0, 0, image.cols, image.rows);
-      for (int y = roi.y; y < roi.y + roi.height; ++y) {
-        uchar* row = image.ptr<uchar>(y);
-        for (int x = roi.x; x < roi.x + roi.width; ++x) {
-          const double d2 = (x - centre.x) * (x - centre.x) + (y - centre.y) * (y - centre.y);
-          const double add = amplitude * std::exp(-d2 / (2 * sigma * sigma));
-          for (int ch = 0; ch < image.channels(); ++ch) {
-            uchar& v = row[x * image.channels() + ch];
-            v = cv::saturate_cast<uchar>(v + add);
-          }
-        }
-      }
+      addSpecularHighlight(image, centre, sigma, amplitude);
     }
   }
   if (u(rng_) < p_corrupt) {

@@ -80,6 +80,16 @@ RobotState FriendSim::state() const {
 
 void FriendSim::tick(const ros::TimerEvent&) {
   const ros::Time now = ros::Time::now();
+  // The time scale may change while running (the repeatability study times some runs at real speed).
+  double scale = time_scale_;
+  if (pnh_.getParamCached("time_scale", scale) && scale != time_scale_) {
+    if (scale > 0) {
+      ROS_INFO("friend_sim: time_scale %.2f -> %.2f", time_scale_, scale);
+      time_scale_ = scale;
+    } else {
+      ROS_WARN_THROTTLE(10, "friend_sim: ignoring ~time_scale %.3f (must be positive); keeping %.2f", scale, time_scale_);
+    }
+  }
   const double dt = std::max(0.0, (now - last_tick_).toSec()) * time_scale_;
   last_tick_ = now;
   arm_->step(dt);

@@ -1,7 +1,9 @@
 // The `imagenets` command line tool, run as a user runs it.
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <boost/filesystem.hpp>
 #include <gtest/gtest.h>
@@ -69,6 +71,23 @@ TEST(Tool, ValidateSaysOkOrListsErrors) {
   EXPECT_EQ(r.status, 1);
   expectContains(r.output, bad + ":2: block 't': unknown block type 'imagenets/Treshold'; did you mean 'imagenets/Threshold'");
   expectContains(r.output, bad + ":3: block 'g' (imagenets/Grayscale): unknown property 'x'");
+}
+
+// Every net shipped in config/nets loads (block types, properties, links, sub-nets, feedback),
+// the paper's calibration nets (Fig. 4.2 / 4.3) among them.
+TEST(Tool, ValidateAcceptsEveryShippedNet) {
+  std::vector<std::string> nets;
+  for (const auto& e : boost::filesystem::directory_iterator("config/nets")) {
+    if (e.path().extension() == ".yaml") nets.push_back("config/nets/" + e.path().filename().string());
+  }
+  for (const char* must : {"config/nets/fig4_2_calibration.yaml", "config/nets/fig4_3_redundant_calibration.yaml"}) {
+    EXPECT_NE(std::find(nets.begin(), nets.end(), must), nets.end()) << must;
+  }
+  for (const auto& net : nets) {
+    Result r = tool("validate " + net);
+    EXPECT_EQ(r.status, 0) << r.output;
+    expectContains(r.output, "OK " + net);
+  }
 }
 
 TEST(Tool, RunWritesOutputsAndTimings) {

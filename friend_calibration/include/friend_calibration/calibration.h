@@ -52,6 +52,17 @@ struct Sample {
   Eigen::Isometry3d fixed_point = Eigen::Isometry3d::Identity();     // this sample's estimate
 };
 
+// ---- Where the robot goes ---------------------------------------------------------------------
+
+struct CalibrationPose {
+  std::vector<double> arm, head;  // joint targets, rad
+};
+
+// The `count` poses a calibration visits. `paper`: the calibration pose every time (paper 4.2).
+// `joint`: varied poses (wrist and elbow turned, the head following the marker), which its
+// unknowns need.
+std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int count, const std::string& method);
+
 // ---- The paper's chain (Fig. 4.2) ----------------------------------------------------------
 
 // Base -> gripper marker from the arm's forward kinematics and the marker offset (TCP -> marker;
@@ -68,6 +79,11 @@ struct FusionLimits {
   // A detection whose corners fit its pose worse than this (RMS pixels) is not used: a clean
   // marker fits to a few hundredths of a pixel, one disturbed by a reflection to tenths.
   double max_reprojection_error = 0.15;
+  // calibrate() tightens that limit to this factor times the median reprojection error of all the
+  // calibration's detections (the camera's own noise level; 0 = off), but not below the floor:
+  // a reflection that moves the corners by a tenth of a pixel still stands out.
+  double relative_reprojection_error = 5.0;
+  double min_reprojection_error = 0.06;
 };
 struct Fusion {
   bool valid = false;

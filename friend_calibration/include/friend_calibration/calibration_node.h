@@ -65,9 +65,6 @@ class CalibrationNode {
     sensor_msgs::ImageConstPtr left, right;
     sensor_msgs::CameraInfoConstPtr left_info, right_info;
   };
-  struct Pose {
-    std::vector<double> arm, head;
-  };
 
   bool onService(imagenets::Calibrate::Request& req, imagenets::Calibrate::Response& res);
   void onAction(const imagenets::CalibrateGoalConstPtr& goal);
@@ -77,8 +74,7 @@ class CalibrationNode {
 
   // Samples on the robot; throws std::runtime_error with the failure's description.
   std::vector<Sample> collectSamples(int n, const std::string& method, const Hooks& hooks);
-  std::vector<Pose> plan(int n, const std::string& method) const;
-  void moveBoth(const Pose& pose, int sample, const Hooks& hooks);
+  void moveBoth(const CalibrationPose& pose, int sample, const Hooks& hooks);
   StereoPair waitForStereoPair(const ros::Time& after, const Hooks& hooks);
   sensor_msgs::JointStateConstPtr waitForJointStates(const ros::Time& after);
   Sample measure(const StereoPair& pair, const sensor_msgs::JointState& joints) const;

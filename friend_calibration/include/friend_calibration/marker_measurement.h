@@ -21,6 +21,11 @@ struct RobustDetectionOptions {
   int coarse_from = 30, coarse_to = 210, coarse_step = 30;  // threshold sweep, gray levels
   int fine_radius = 10, fine_step = 5;                      // refinement around the best
   double min_confidence = 0.6;
+  // Stop early: the region's Otsu threshold is tried first, and a detection there with at least
+  // this pattern confidence and (refined) reprojection error at most `good_reprojection_px` is
+  // kept without sweeping (0 = always sweep). A disturbed marker fails these and gets the sweep.
+  double good_confidence = 0.95;
+  double good_reprojection_px = 0.1;
   int roi_margin_px = 120;  // region of interest: predicted marker +- this (0 = whole image)
 };
 

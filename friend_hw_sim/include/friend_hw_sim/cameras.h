@@ -70,6 +70,10 @@ cv::Mat renderView(const imagenets::render::Renderer& renderer, const WorldScene
                    const Eigen::Isometry3d& camera_in_base, const imagenets::render::RenderOptions& options,
                    WorldViewCache* cache = nullptr);
 
+// A specular highlight (a lamp on the gripper's metal): a Gaussian spot added to every channel,
+// saturating. The simulator's spurious-reflection fault; benchmarks reuse it.
+void addSpecularHighlight(cv::Mat& image, const cv::Point2d& centre, double sigma, double amplitude);
+
 class CameraSim {
  public:
   CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& sim);

@@ -10,7 +10,7 @@
 //   ~ground_truth/{tcp,marker,left_camera,right_camera,head_base,hand_camera}
 //                                         geometry_msgs/TransformStamped (base -> frame, true robot)
 //   ~ground_truth/joint_states            exact joint angles (no encoder noise)
-// Parameters (private): description, true_error, seed, time_scale, joint_state_rate,
+// Parameters (private): description, true_error, seed, time_scale (live), joint_state_rate,
 //   encoder_noise (rad), faults/arm_abort_probability, faults/head_abort_probability,
 //   ft_sensor/{payload_mass, payload_com, force_noise, torque_noise}; camera ones in cameras.h.
 #pragma once
@@ -48,7 +48,6 @@ class FriendSim {
   RobotState state() const;
   const RobotModel& nominal() const { return nominal_; }
   const RobotModel& truth() const { return truth_; }
-  double timeScale() const { return time_scale_; }
 
  private:
   void tick(const ros::TimerEvent& e);
@@ -59,7 +58,7 @@ class FriendSim {
 
   ros::NodeHandle nh_, pnh_;
   RobotModel nominal_, truth_;
-  double time_scale_ = 1.0;
+  double time_scale_ = 1.0;  // ~time_scale, read live (timer thread only)
   std::unique_ptr<JointGroupServer> arm_, head_;
   ros::Publisher joint_states_, truth_joint_states_, wrench_;
   std::map<std::string, ros::Publisher> truth_frames_;
