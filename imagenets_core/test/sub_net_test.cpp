@@ -156,6 +156,29 @@ links: [counter.count -> out.value]
   EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("loop.n")->data, 5.0);
 }
 
+TEST(SubNet, FailedRepetitionsAreLeftOutOrFailTheBlock) {
+  // Every 2nd run of the inner counter fails: runs 2 and 4 of 5.
+  write("flaky.yaml", R"(
+blocks:
+  counter: {type: test/Counter, properties: {fail_every: 2}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
+links: [counter.count -> out.value]
+)");
+  write("tolerant.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: flaky.yaml, repeat: 5, max_failures: 2}}\n");
+  auto tolerant = loadFile("tolerant.yaml");
+  ASSERT_TRUE(tolerant->run().ok());
+  // Only the successful repetitions: a failed one does not repeat the previous result.
+  EXPECT_EQ(tolerant->output<std_msgs::Float64MultiArray>("loop.n_all")->data, (std::vector<double>{1, 3, 5}));
+
+  write("strict.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: flaky.yaml, repeat: 5, max_failures: 1}}\n");
+  auto strict = loadFile("strict.yaml");
+  const RunReport r = strict->run();
+  ASSERT_EQ(r.failed.size(), 1u);
+  EXPECT_NE(r.failed[0].find("2 of 5 repetitions failed (max_failures 1); repetition 2:"), std::string::npos) << r.failed[0];
+  EXPECT_NE(r.failed[0].find("run 2 failed on purpose"), std::string::npos) << r.failed[0];
+  EXPECT_FALSE(strict->output<std_msgs::Float64MultiArray>("loop.n_all"));
+}
+
 TEST(SubNet, RepeatBelowOneIsAClearError) {
   write("count.yaml", "blocks:\n  counter: {type: test/Counter}\n");
   write("repeat0.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: count.yaml, repeat: 0}}\n");

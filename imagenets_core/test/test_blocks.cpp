@@ -126,10 +126,16 @@ class Barrier : public Block {
 // Outputs how many times this instance ran (1, 2, 3, ...): tells repetitions apart.
 class Counter : public Block {
  public:
-  Counter() { addOutput<std_msgs::Float64>("count", "runs so far, this one included"); }
+  Counter() {
+    addOutput<std_msgs::Float64>("count", "runs so far, this one included");
+    addProperty<int>("fail_every", 0, "fail every n-th run (0 = never): a flaky measurement").range(0, 1000);
+  }
   void process(Context& ctx) override {
     count(ctx);
-    ctx.output("count", number(static_cast<double>(++runs_)));
+    const int run = ++runs_;
+    const int fail_every = ctx.property<int>("fail_every");
+    if (fail_every > 0 && run % fail_every == 0) throw BlockError("run " + std::to_string(run) + " failed on purpose");
+    ctx.output("count", number(static_cast<double>(run)));
   }
 
  private:

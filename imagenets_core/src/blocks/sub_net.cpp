@@ -1,7 +1,8 @@
 // The ImageNet Executor block (paper 3.5): runs a net file as one block of another net. The
 // sub-net's ExecutorInput / ExecutorOutput blocks become this block's ports. With `repeat: N` the
 // sub-net runs N times per run (paper 4.2, Fig. 4.3) and each output also comes as the collection
-// of its N results (`<port>_all`), so a downstream block can take their mean or median.
+// of its N results (`<port>_all`), so a downstream block can take their mean or median. Up to
+// `max_failures` repetitions may fail (a loop that found no marker): they are left out.
 #include <boost/filesystem.hpp>
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/PoseStamped.h>
@@ -66,6 +67,9 @@ class SubNet : public Block, public SubNetAccess {
     addProperty<std::string>("net_yaml", "", "the sub-net written inline as YAML (instead of `net`)");
     addProperty<int>("repeat", 1, "runs of the sub-net per run; outputs also come as collections `<port>_all`")
         .range(1, 100000);
+    addProperty<int>("max_failures", 0,
+                     "repetitions that may fail (their results are left out); more fail the block")
+        .range(0, 100000);
     addProperty<int>("threads", 0, "worker threads of the sub-net (0 = number of cores)").range(0, 64);
   }
 
@@ -123,24 +127,29 @@ class SubNet : public Block, public SubNetAccess {
     const int repeat = ctx.property<int>("repeat");
     std::vector<std::vector<Value>> results(outputs_.size());
     std::string first_failure;
+    int failures = 0;
     for (int i = 0; i < repeat; ++i) {
       // Every repetition re-runs the whole sub-net (sources included: a fresh image, a new move).
       RunReport report = repeat == 1 ? executor_->run() : executor_->runAll();
-      if (first_failure.empty() && !report.failed.empty()) first_failure = report.failed.front();
+      if (!report.failed.empty()) {
+        // Its outputs may still hold the previous repetition's values: none of them is taken.
+        if (++failures == 1) first_failure = "repetition " + std::to_string(i + 1) + ": " + report.failed.front();
+        continue;
+      }
       for (size_t o = 0; o < outputs_.size(); ++o) {
         Value v = executor_->output(outputs_[o].inner);
         if (v) results[o].push_back(v);
       }
     }
-    bool any = false;
+    if (failures > ctx.property<int>("max_failures") || failures == repeat) {
+      throw BlockError("sub-net " + executor_->net().origin() + ": " + std::to_string(failures) + " of " +
+                       std::to_string(repeat) + " repetitions failed (max_failures " +
+                       std::to_string(ctx.property<int>("max_failures")) + "); " + first_failure);
+    }
     for (size_t o = 0; o < outputs_.size(); ++o) {
       if (results[o].empty()) continue;
-      any = true;
       ctx.setOutput(outputs_[o].port, results[o].back());
       if (!outputs_[o].collection.empty()) ctx.setOutput(outputs_[o].port + "_all", collect(results[o]));
-    }
-    if (!any && !first_failure.empty()) {
-      throw BlockError("sub-net " + executor_->net().origin() + ": " + first_failure);
     }
   }
 
