@@ -24,36 +24,9 @@
 #include "friend_hw_sim/robot_model.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/blocks/frames.h"
+#include "latest_message.h"
 
 namespace {
-
-// Keeps the newest message of a topic; wait() returns the first one stamped after `after`.
-template <class M>
-class Newest {
- public:
-  explicit Newest(const std::string& topic) { sub_ = nh_.subscribe(topic, 5, &Newest::cb, this); }
-  boost::shared_ptr<const M> wait(double timeout, const ros::Time& after = ros::Time(0)) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
-    for (;;) {
-      {
-        std::lock_guard<std::mutex> lock(m_);
-        if (last_ && last_->header.stamp >= after) return last_;
-      }
-      if (ros::WallTime::now() >= end) return nullptr;
-      ros::WallDuration(0.01).sleep();
-    }
-  }
-
- private:
-  void cb(const boost::shared_ptr<const M>& m) {
-    std::lock_guard<std::mutex> lock(m_);
-    last_ = m;
-  }
-  ros::NodeHandle nh_;
-  ros::Subscriber sub_;
-  std::mutex m_;
-  boost::shared_ptr<const M> last_;
-};
 
 const std::string kCalibratedLeft = "calibrated/stereo_left_optical_frame";
 
@@ -61,13 +34,13 @@ const std::string kCalibratedLeft = "calibrated/stereo_left_optical_frame";
 
 TEST(Fig4_4CalibratedCamera, ExtrinsicsCloudAndDetectionImages) {
   ros::NodeHandle nh;
-  Newest<sensor_msgs::Image> detection_left("/friend_calibration/detections/left/image");
-  Newest<sensor_msgs::Image> detection_right("/friend_calibration/detections/right/image");
-  Newest<sensor_msgs::CameraInfo> detection_left_info("/friend_calibration/detections/left/camera_info");
-  Newest<geometry_msgs::TransformStamped> extrinsics("/fig4_4/left/extrinsics");
-  Newest<sensor_msgs::CameraInfo> calibrated_info("/fig4_4/left/camera_info");
-  Newest<sensor_msgs::PointCloud2> cloud("/fig4_4/points2");
-  Newest<sensor_msgs::JointState> joints("/joint_states");
+  LatestMessage<sensor_msgs::Image> detection_left("/friend_calibration/detections/left/image");
+  LatestMessage<sensor_msgs::Image> detection_right("/friend_calibration/detections/right/image");
+  LatestMessage<sensor_msgs::CameraInfo> detection_left_info("/friend_calibration/detections/left/camera_info");
+  LatestMessage<geometry_msgs::TransformStamped> extrinsics("/fig4_4/left/extrinsics");
+  LatestMessage<sensor_msgs::CameraInfo> calibrated_info("/fig4_4/left/camera_info");
+  LatestMessage<sensor_msgs::PointCloud2> cloud("/fig4_4/points2");
+  LatestMessage<sensor_msgs::JointState> joints("/joint_states");
 
   ASSERT_TRUE(ros::service::waitForService("/friend_calibration/calibrate", ros::Duration(30)));
   imagenets::Calibrate srv;
@@ -102,14 +75,14 @@ TEST(Fig4_4CalibratedCamera, ExtrinsicsCloudAndDetectionImages) {
   // The extrinsics of an image taken after the calibration, and independently: the calibrated
   // fixed point (service response) * the nominal head chain at the head's current angles (the head
   // rests after the calibration, so joint_states now are the angles at that image).
-  auto ext = extrinsics.wait(20.0, calibrated + ros::Duration(0.3));
+  auto ext = extrinsics.waitFrom(calibrated + ros::Duration(0.3), 20.0);
   ASSERT_TRUE(ext) << "no /fig4_4/left/extrinsics after the calibration";
   EXPECT_EQ(ext->header.frame_id, "base_link");
   EXPECT_EQ(ext->child_frame_id, kCalibratedLeft);
-  auto model_info = calibrated_info.wait(5.0, ext->header.stamp);
+  auto model_info = calibrated_info.waitFrom(ext->header.stamp, 5.0);
   ASSERT_TRUE(model_info);
   EXPECT_EQ(model_info->header.frame_id, kCalibratedLeft);
-  auto js = joints.wait(5.0, ext->header.stamp);
+  auto js = joints.waitFrom(ext->header.stamp, 5.0);
   ASSERT_TRUE(js);
   const friend_hw_sim::RobotModel model(friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
   std::vector<double> head;
@@ -128,7 +101,7 @@ TEST(Fig4_4CalibratedCamera, ExtrinsicsCloudAndDetectionImages) {
   EXPECT_GT((got.translation() - nominal.translation()).norm(), 0.003);
 
   // The stereo point cloud: in the calibrated camera frame; on the table where the table is.
-  auto pc = cloud.wait(20.0, ext->header.stamp);
+  auto pc = cloud.waitFrom(ext->header.stamp, 20.0);
   ASSERT_TRUE(pc) << "no /fig4_4/points2 after the calibration";
   EXPECT_EQ(pc->header.frame_id, kCalibratedLeft);
   const auto scene = friend_hw_sim::loadWorldScene(friend_hw_sim::defaultRobotDescriptionPath().substr(

@@ -21,39 +21,12 @@
 #include "imagenets/BlockNodeletStatus.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/blocks/frames.h"
+#include "latest_message.h"
 
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 const std::string kNet = "/fig4_3_redundant_calibration";
-
-// The last message of a (latched) topic, waited for with a bound.
-template <class M>
-class Latest {
- public:
-  explicit Latest(const std::string& topic) { sub_ = nh_.subscribe(topic, 5, &Latest::cb, this); }
-  boost::shared_ptr<const M> wait(double timeout) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::WallTime::now() < end && ros::ok()) {
-      {
-        std::lock_guard<std::mutex> lock(m_);
-        if (last_) return last_;
-      }
-      ros::WallDuration(0.01).sleep();
-    }
-    return nullptr;
-  }
-
- private:
-  void cb(const boost::shared_ptr<const M>& m) {
-    std::lock_guard<std::mutex> lock(m_);
-    last_ = m;
-  }
-  ros::NodeHandle nh_;
-  ros::Subscriber sub_;
-  std::mutex m_;
-  boost::shared_ptr<const M> last_;
-};
 
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) { return imagenets::frames::toIsometry(t, "transform"); }
 Eigen::Isometry3d toEigen(const geometry_msgs::Pose& p) { return imagenets::frames::toIsometry(p, "pose"); }
@@ -78,11 +51,11 @@ std::vector<double> positions(const sensor_msgs::JointState& js, const std::vect
 class Fig4CalibrationNets : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    Latest<geometry_msgs::TransformStamped> fixed_point(kNet + "/out/fixed_point");
-    Latest<geometry_msgs::PoseArray> fixed_points(kNet + "/out/fixed_points"), left(kNet + "/out/left_poses"),
+    LatestMessage<geometry_msgs::TransformStamped> fixed_point(kNet + "/out/fixed_point");
+    LatestMessage<geometry_msgs::PoseArray> fixed_points(kNet + "/out/fixed_points"), left(kNet + "/out/left_poses"),
         right(kNet + "/out/right_poses");
-    Latest<sensor_msgs::JointState> arm(kNet + "/out/arm_joint_states"), head(kNet + "/out/head_joint_states");
-    Latest<imagenets::BlockNodeletStatus> status(kNet + "/status");
+    LatestMessage<sensor_msgs::JointState> arm(kNet + "/out/arm_joint_states"), head(kNet + "/out/head_joint_states");
+    LatestMessage<imagenets::BlockNodeletStatus> status(kNet + "/status");
     // The net runs once at start-up: 3 loops of motion, stereo grab and two feedback detections.
     result_ = fixed_point.wait(45);
     if (!result_) {
@@ -96,7 +69,7 @@ class Fig4CalibrationNets : public ::testing::Test {
     right_ = right.wait(5);
     arm_ = arm.wait(5);
     head_ = head.wait(5);
-    truth_ = Latest<geometry_msgs::TransformStamped>("/friend_sim/ground_truth/head_base").wait(5);
+    truth_ = LatestMessage<geometry_msgs::TransformStamped>("/friend_sim/ground_truth/head_base").wait(5);
   }
   void SetUp() override { ASSERT_TRUE(result_) << failure_; }
 

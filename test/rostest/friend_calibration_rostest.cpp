@@ -20,37 +20,11 @@
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"
 #include "imagenets/blocks/frames.h"
+#include "latest_message.h"
 
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-template <class M>
-class Latest {
- public:
-  explicit Latest(const std::string& topic) { sub_ = nh_.subscribe(topic, 5, &Latest::cb, this); }
-  boost::shared_ptr<const M> wait(double timeout) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::WallTime::now() < end) {
-      {
-        std::lock_guard<std::mutex> lock(m_);
-        if (last_) return last_;
-      }
-      ros::WallDuration(0.01).sleep();
-    }
-    return nullptr;
-  }
-
- private:
-  void cb(const boost::shared_ptr<const M>& m) {
-    std::lock_guard<std::mutex> lock(m_);
-    last_ = m;
-  }
-  ros::NodeHandle nh_;
-  ros::Subscriber sub_;
-  std::mutex m_;
-  boost::shared_ptr<const M> last_;
-};
 
 std::string readFile(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
@@ -111,7 +85,7 @@ class FriendCalibration : public ::testing::Test {
   }
 
   static std::string file_;
-  Latest<geometry_msgs::TransformStamped> head_base_{"/friend_sim/ground_truth/head_base"};
+  LatestMessage<geometry_msgs::TransformStamped> head_base_{"/friend_sim/ground_truth/head_base"};
 };
 std::string FriendCalibration::file_;
 

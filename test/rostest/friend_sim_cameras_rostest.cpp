@@ -21,44 +21,11 @@
 #include "friend_hw_sim/robot_model.h"
 #include "imagenets/blocks/marker.h"
 #include "imagenets/MoveJointsAction.h"
+#include "latest_message.h"
 
 namespace {
 
 using Client = actionlib::SimpleActionClient<imagenets::MoveJointsAction>;
-
-template <class M>
-class Latest {
- public:
-  explicit Latest(const std::string& topic) { sub_ = nh_.subscribe(topic, 5, &Latest::cb, this); }
-  boost::shared_ptr<const M> get() {
-    std::lock_guard<std::mutex> lock(m_);
-    return last_;
-  }
-  void clear() {
-    std::lock_guard<std::mutex> lock(m_);
-    last_.reset();
-  }
-  // Waits for a message newer than `after`.
-  boost::shared_ptr<const M> waitNewer(const ros::Time& after, double timeout) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::WallTime::now() < end) {
-      auto m = get();
-      if (m && m->header.stamp > after) return m;
-      ros::WallDuration(0.01).sleep();
-    }
-    return nullptr;
-  }
-
- private:
-  void cb(const boost::shared_ptr<const M>& m) {
-    std::lock_guard<std::mutex> lock(m_);
-    last_ = m;
-  }
-  ros::NodeHandle nh_;
-  ros::Subscriber sub_;
-  std::mutex m_;
-  boost::shared_ptr<const M> last_;
-};
 
 Eigen::Isometry3d toEigen(const geometry_msgs::TransformStamped& t) { return tf2::transformToEigen(t); }
 
@@ -91,14 +58,14 @@ class FriendSimCameras : public ::testing::Test {
     std_srvs::Trigger t;
     if (!ros::service::waitForService("stereo/trigger", 10000) || !ros::service::call("stereo/trigger", t)) return false;
     // The service returns after publishing; the images are on their way.
-    *l = left_.waitNewer(before - ros::Duration(0.001), timeout);
-    *r = right_.waitNewer(before - ros::Duration(0.001), timeout);
+    *l = left_.waitFrom(before - ros::Duration(0.001), timeout);
+    *r = right_.waitFrom(before - ros::Duration(0.001), timeout);
     return *l && *r;
   }
 
-  Latest<sensor_msgs::Image> left_{"stereo/left/image_raw"}, right_{"stereo/right/image_raw"};
-  Latest<sensor_msgs::CameraInfo> left_info_{"stereo/left/camera_info"}, right_info_{"stereo/right/camera_info"};
-  Latest<geometry_msgs::TransformStamped> gt_marker_{"friend_sim/ground_truth/marker"},
+  LatestMessage<sensor_msgs::Image> left_{"stereo/left/image_raw"}, right_{"stereo/right/image_raw"};
+  LatestMessage<sensor_msgs::CameraInfo> left_info_{"stereo/left/camera_info"}, right_info_{"stereo/right/camera_info"};
+  LatestMessage<geometry_msgs::TransformStamped> gt_marker_{"friend_sim/ground_truth/marker"},
       gt_left_{"friend_sim/ground_truth/left_camera"}, gt_right_{"friend_sim/ground_truth/right_camera"};
 };
 
@@ -111,13 +78,13 @@ TEST_F(FriendSimCameras, MarkerAppearsWhereTheTrueGeometryProjectsIt) {
   EXPECT_EQ(r->header.frame_id, "stereo_right_optical_frame");
   EXPECT_EQ(l->width, 1024u);
   EXPECT_EQ(l->height, 768u);
-  auto li = left_info_.waitNewer(l->header.stamp - ros::Duration(1e-6), 2);
-  auto ri = right_info_.waitNewer(r->header.stamp - ros::Duration(1e-6), 2);
+  auto li = left_info_.waitFrom(l->header.stamp - ros::Duration(1e-6), 2);
+  auto ri = right_info_.waitFrom(r->header.stamp - ros::Duration(1e-6), 2);
   ASSERT_TRUE(li && ri) << "camera_info missing beside the images";
   EXPECT_EQ(li->header.stamp, l->header.stamp);
 
-  auto gm = gt_marker_.waitNewer(ros::Time(0), 2), gl = gt_left_.waitNewer(ros::Time(0), 2),
-       gr = gt_right_.waitNewer(ros::Time(0), 2);
+  auto gm = gt_marker_.wait(2), gl = gt_left_.wait(2),
+       gr = gt_right_.wait(2);
   ASSERT_TRUE(gm && gl && gr) << "ground truth topics missing";
   // The project's marker detector (imagenets/blocks/marker.h) on each image, compared with the
   // 8 defined points of the gripper marker projected through the TRUE geometry.
@@ -157,7 +124,7 @@ TEST_F(FriendSimCameras, GroundTruthAgreesWithTheTrueRobotTf) {
   tf2_ros::TransformListener listener(buffer);
   ros::Duration(1.0).sleep();
   for (auto* topic : {&gt_left_, &gt_right_, &gt_marker_}) {
-    auto gt = topic->waitNewer(ros::Time(0), 2);
+    auto gt = topic->wait(2);
     ASSERT_TRUE(gt);
     geometry_msgs::TransformStamped tf;
     try {
