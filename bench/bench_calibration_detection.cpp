@@ -1,9 +1,10 @@
 // bench_calibration_detection: what one calibration sample costs in image processing -- the
 // robust marker detection (marker_measurement.h) of the left and right image -- and how accurate
 // it is, on the simulator's own renderings of the joint method's ten poses (true geometry, default
-// noise), half of them with a spurious reflection near the marker. Compared: the threshold sweep
-// the calibration uses (coarse-to-fine around the prediction), an exhaustive sweep, and a single
-// fixed threshold (no feedback). Times are CPU time of the detecting thread (robust to a loaded
+// noise), then again with a spurious reflection near the marker in about half of the views.
+// Compared: the calibration's detection (Otsu threshold first, the coarse-to-fine sweep only when
+// that is not good), always sweeping, an exhaustive sweep, a single fixed threshold (no feedback)
+// and the whole image instead of the predicted region. Times are CPU time of the detecting thread (robust to a loaded
 // machine) and wall time of a left+right pair detected in parallel, as the node does.
 #include <time.h>
 
@@ -43,9 +44,12 @@ struct View {
   bool reflection = false;
 };
 
+// Accuracy is counted apart for clean views and for views with a reflection whose detection
+// passes the calibration's reprojection gate (FusionLimits::min_reprojection_error, the limit
+// for this camera's noise): a disturbed detection the gate lets through is what biases a result.
 struct Figures {
-  double cpu_ms = 0, pair_wall_ms = 0, worst_mm = 0, sum_mm = 0, sum_deg = 0;
-  int found = 0, views = 0, over_1mm = 0;
+  double cpu_ms = 0, pair_wall_ms = 0, clean_worst_mm = 0, clean_sum_mm = 0, clean_sum_deg = 0, gated_worst_mm = 0;
+  int clean = 0, clean_found = 0, disturbed = 0, disturbed_found = 0, disturbed_passed = 0;
 };
 
 Figures measure(const std::vector<View>& views, const imagenets::marker::MarkerDescription& marker,
@@ -66,19 +70,27 @@ Figures measure(const std::vector<View>& views, const imagenets::marker::MarkerD
     f.pair_wall_ms += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     f.cpu_ms += cpu_l + cpu_r;
     for (const auto& [o, v] : {std::make_pair(left, &views[i]), std::make_pair(r, &views[i + 1])}) {
-      ++f.views;
       if (std::getenv("VERBOSE")) {
-        std::printf("  view %ld%s: found %d conf %.3f thr %.0f reproj %.3f err %.3f mm %s\n", (long)(v - views.data()),
+        std::printf("  view %ld%s: found %d conf %.3f thr %.0f reproj %.3f err %.3f mm %s\n", static_cast<long>(v - views.data()),
                     v->reflection ? " (reflection)" : "", o.found, o.confidence, o.threshold, o.reprojection_error,
                     o.found ? (o.pose.translation() - v->truth.translation()).norm() * 1000 : 0.0, o.reason.c_str());
       }
-      if (!o.found) continue;
-      ++f.found;
       const double mm = (o.pose.translation() - v->truth.translation()).norm() * 1000;
-      f.sum_mm += mm;
-      f.sum_deg += angleBetween(o.pose, v->truth) * 180 / M_PI;
-      f.worst_mm = std::max(f.worst_mm, mm);
-      if (mm > 1.0) ++f.over_1mm;
+      if (!v->reflection) {
+        ++f.clean;
+        if (!o.found) continue;
+        ++f.clean_found;
+        f.clean_sum_mm += mm;
+        f.clean_sum_deg += angleBetween(o.pose, v->truth) * 180 / M_PI;
+        f.clean_worst_mm = std::max(f.clean_worst_mm, mm);
+      } else {
+        ++f.disturbed;
+        if (!o.found) continue;
+        ++f.disturbed_found;
+        if (o.reprojection_error > FusionLimits().min_reprojection_error) continue;
+        ++f.disturbed_passed;
+        f.gated_worst_mm = std::max(f.gated_worst_mm, mm);
+      }
     }
   }
   return f;
@@ -139,10 +151,11 @@ int main() {
   for (const auto& v : views) reflections += v.reflection;
   std::printf("robust marker detection for the calibration: %zu views of 1024x768 (10 joint-method poses x left/right,\n"
               "twice; %d with a spurious reflection), region of interest from the nominal prediction;\n"
-              "errors against the true marker pose in the camera frame\n",
-              views.size(), reflections);
-  std::printf("%-48s %9s %12s %12s %7s %9s %9s %8s\n", "sweep", "CPU ms/img", "pair wall ms", "found", "mean mm",
-              "mean deg", "worst mm", ">1 mm");
+              "errors against the true marker pose in the camera frame; 'passed': reflection-disturbed detections\n"
+              "with a reprojection error within the calibration's gate (%.2f px)\n",
+              views.size(), reflections, FusionLimits().min_reprojection_error);
+  std::printf("%-48s %10s %12s | %-12s %7s %8s %8s | %-12s %-6s %8s\n", "sweep", "CPU ms/img", "pair wall ms",
+              "clean found", "mean mm", "mean deg", "worst mm", "refl. found", "passed", "worst mm");
   struct Variant {
     const char* name;
     RobustDetectionOptions options;
@@ -169,9 +182,11 @@ int main() {
   for (const auto& v : variants) {
     measure(views, marker, v.options);  // warm-up (allocations, caches)
     const Figures f = measure(views, marker, v.options);
-    std::printf("%-48s %9.2f %12.2f %6d / %-4d %7.3f %9.4f %9.3f %8d\n", v.name, f.cpu_ms / f.views,
-                f.pair_wall_ms / (f.views / 2), f.found, f.views, f.found ? f.sum_mm / f.found : 0,
-                f.found ? f.sum_deg / f.found : 0, f.worst_mm, f.over_1mm);
+    const int views = f.clean + f.disturbed;
+    std::printf("%-48s %10.2f %12.2f | %4d / %-5d %7.3f %8.4f %8.3f | %4d / %-5d %-6d %8.3f\n", v.name,
+                f.cpu_ms / views, f.pair_wall_ms / (views / 2), f.clean_found, f.clean,
+                f.clean_found ? f.clean_sum_mm / f.clean_found : 0, f.clean_found ? f.clean_sum_deg / f.clean_found : 0,
+                f.clean_worst_mm, f.disturbed_found, f.disturbed, f.disturbed_passed, f.gated_worst_mm);
   }
   return 0;
 }
