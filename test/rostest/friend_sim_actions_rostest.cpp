@@ -138,11 +138,26 @@ TEST_F(FriendSimActions, NewGoalPreemptsAndCancelStops) {
 }
 
 TEST_F(FriendSimActions, FeedbackReportsProgress) {
-  std::vector<double> progress;
+  // Feedback arrives on the spinner's threads (two of them): collected under a lock, and owned
+  // by the callback so that a late one after this test ends touches nothing freed.
+  struct Progress {
+    std::mutex mutex;
+    std::vector<double> values;
+  };
+  auto received = std::make_shared<Progress>();
   arm_.sendGoal(goal({20, 20, 0, 30, 0, 0, 0}, 0.2), Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
-                [&](const imagenets::MoveJointsFeedbackConstPtr& fb) { progress.push_back(fb->progress); });
+                [received](const imagenets::MoveJointsFeedbackConstPtr& fb) {
+                  std::lock_guard<std::mutex> lock(received->mutex);
+                  received->values.push_back(fb->progress);
+                });
   ASSERT_TRUE(arm_.waitForResult(ros::Duration(20)));
   EXPECT_EQ(arm_.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
+  arm_.stopTrackingGoal();
+  std::vector<double> progress;
+  {
+    std::lock_guard<std::mutex> lock(received->mutex);
+    progress = received->values;
+  }
   ASSERT_GT(progress.size(), 3u);
   for (size_t i = 1; i < progress.size(); ++i) EXPECT_GE(progress[i], progress[i - 1]);
   EXPECT_LE(progress.back(), 1.0);
