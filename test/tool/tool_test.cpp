@@ -133,4 +133,9 @@ TEST(Tool, UnknownCommandAndMissingArgumentsAreUsageErrors) {
   Result r = tool("graph config/nets/threshold_demo.yaml");
   EXPECT_EQ(r.status, 2);
   expectContains(r.output, "usage: imagenets graph");
+  // Checked before anything connects to ROS.
+  r = tool("repeatability --real-speed-runs -1");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--real-speed-runs must be >= 0");
+  expectContains(r.output, "usage: imagenets repeatability");
 }
