@@ -22,16 +22,6 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& t, const std::string& parent,
-                                            const std::string& child, const ros::Time& stamp) {
-  geometry_msgs::TransformStamped m;
-  m.header.stamp = stamp;
-  m.header.frame_id = parent;
-  m.child_frame_id = child;
-  m.transform = imagenets::frames::toTransform(t);
-  return m;
-}
-
 std::string packageFile(const std::string& rel) {
   const std::string desc = friend_hw_sim::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
   return desc.substr(0, desc.size() - std::string("config/friend/robot.yaml").size()) + rel;
@@ -61,7 +51,7 @@ template <class Out>
 void fill(Out& out, const Result& r, const std::string& base, const std::string& child) {
   out.success = r.success;
   out.message = r.message;
-  out.fixed_point = toTransform(r.fixed_point, base, child, ros::Time::now());
+  out.fixed_point = imagenets::frames::toTransformStamped(r.fixed_point, base, child, ros::Time::now());
   out.std_dev_translation = imagenets::frames::toVector3Msg(r.std_translation);
   out.std_dev_rotation = imagenets::frames::toVector3Msg(r.std_rotation);
   out.samples_used = static_cast<int>(r.used.size());
@@ -216,8 +206,8 @@ void CalibrationNode::onJointStates(const sensor_msgs::JointStateConstPtr& msg) 
   const Eigen::Isometry3d left = headChain(model_, head);
   const auto& d = model_.description();
   std::vector<geometry_msgs::TransformStamped> t{
-      toTransform(left, child_frame_, "calibrated/" + d.left_camera.frame, msg->header.stamp),
-      toTransform(left * model_.leftToRight(), child_frame_, "calibrated/" + d.right_camera_frame, msg->header.stamp)};
+      imagenets::frames::toTransformStamped(left, child_frame_, "calibrated/" + d.left_camera.frame, msg->header.stamp),
+      imagenets::frames::toTransformStamped(left * model_.leftToRight(), child_frame_, "calibrated/" + d.right_camera_frame, msg->header.stamp)};
   tf_.sendTransform(t);
 }
 
@@ -533,8 +523,8 @@ void CalibrationNode::publishDetections(const StereoPair& pair, const Sample& sa
 void CalibrationNode::publish(const Result& result, const std::string& frame) {
   const auto& base = model_.description().base_frame;
   const ros::Time now = ros::Time::now();
-  std::vector<geometry_msgs::TransformStamped> t{toTransform(result.fixed_point, base, frame, now),
-                                                 toTransform(model_.headBase(), base, frame + "_nominal", now)};
+  std::vector<geometry_msgs::TransformStamped> t{imagenets::frames::toTransformStamped(result.fixed_point, base, frame, now),
+                                                 imagenets::frames::toTransformStamped(model_.headBase(), base, frame + "_nominal", now)};
   static_tf_.sendTransform(t);
   std::lock_guard<std::mutex> lock(calibration_mutex_);
   current_ = result.fixed_point;

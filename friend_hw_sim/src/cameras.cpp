@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "friend_hw_sim/friend_sim.h"
+#include "imagenets/blocks/frames.h"
 #include "imagenets/blocks/marker.h"
 
 namespace friend_hw_sim {
@@ -245,14 +246,7 @@ CameraSim::CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& s
     mk.id = static_cast<int>(markers.markers.size());
     mk.type = visualization_msgs::Marker::CUBE;
     const Eigen::Isometry3d centre = wp.pose * fromXyzRpy(Eigen::Vector3d(0, 0, -0.001), Eigen::Vector3d::Zero());
-    mk.pose.position.x = centre.translation().x();
-    mk.pose.position.y = centre.translation().y();
-    mk.pose.position.z = centre.translation().z();
-    const Eigen::Quaterniond q(centre.linear());
-    mk.pose.orientation.x = q.x();
-    mk.pose.orientation.y = q.y();
-    mk.pose.orientation.z = q.z();
-    mk.pose.orientation.w = q.w();
+    mk.pose = imagenets::frames::toPose(centre);
     mk.scale.x = wp.width;
     mk.scale.y = wp.height;
     mk.scale.z = 0.002;

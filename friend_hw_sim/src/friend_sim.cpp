@@ -5,26 +5,10 @@
 #include <sensor_msgs/JointState.h>
 
 #include "friend_hw_sim/cameras.h"
+#include "imagenets/blocks/frames.h"
 
 namespace friend_hw_sim {
 namespace {
-
-geometry_msgs::TransformStamped toMsg(const Eigen::Isometry3d& t, const ros::Time& stamp, const std::string& parent,
-                                      const std::string& child) {
-  geometry_msgs::TransformStamped m;
-  m.header.stamp = stamp;
-  m.header.frame_id = parent;
-  m.child_frame_id = child;
-  m.transform.translation.x = t.translation().x();
-  m.transform.translation.y = t.translation().y();
-  m.transform.translation.z = t.translation().z();
-  const Eigen::Quaterniond q(t.linear());
-  m.transform.rotation.x = q.x();
-  m.transform.rotation.y = q.y();
-  m.transform.rotation.z = q.z();
-  m.transform.rotation.w = q.w();
-  return m;
-}
 
 std::string packagePath(const std::string& rel) {
   const std::string desc = defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
@@ -125,7 +109,7 @@ void FriendSim::publishGroundTruth(const RobotState& s) {
   const std::string& base = d.base_frame;
   auto pub = [&](const char* key, const Eigen::Isometry3d& t, const std::string& child) {
     auto& p = truth_frames_[key];
-    if (p.getNumSubscribers() > 0) p.publish(toMsg(t, s.stamp, base, child));
+    if (p.getNumSubscribers() > 0) p.publish(imagenets::frames::toTransformStamped(t, base, child, s.stamp));
   };
   pub("tcp", truth_.tcp(s.arm), d.tool.frame);
   pub("marker", truth_.marker(s.arm), d.marker.frame);

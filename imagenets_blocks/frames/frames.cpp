@@ -104,6 +104,16 @@ geometry_msgs::Transform toTransform(const Eigen::Isometry3d& t) {
   return m;
 }
 
+geometry_msgs::TransformStamped toTransformStamped(const Eigen::Isometry3d& t, const std::string& parent,
+                                                   const std::string& child, const ros::Time& stamp) {
+  geometry_msgs::TransformStamped m;
+  m.header.stamp = stamp;
+  m.header.frame_id = parent;
+  m.child_frame_id = child;
+  m.transform = toTransform(t);
+  return m;
+}
+
 double rotationAngle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   // |<a,b>| = cos(angle/2), independent of the sign of either quaternion.
   const double c = std::min(1.0, std::abs(a.normalized().dot(b.normalized())));

@@ -19,18 +19,9 @@
 #include <std_msgs/Bool.h>
 #include <std_msgs/Float64.h>
 #include <std_srvs/Trigger.h>
+#include "rostest_util.h"
 
 namespace {
-
-// Waits (the AsyncSpinner delivers messages meanwhile) until `done` holds or `seconds` pass.
-bool waitFor(const std::function<bool()>& done, double seconds) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (std::chrono::steady_clock::now() < end) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return done();
-}
 
 // Latest ~status of some block nodelets.
 class StatusWatch {

@@ -14,19 +14,11 @@
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Trigger.h>
+#include "rostest_util.h"
 
 namespace {
 
 std::string g_net_file;
-
-bool waitFor(const std::function<bool()>& done, double seconds) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (std::chrono::steady_clock::now() < end) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return done();
-}
 
 // The last image on a topic.
 class Latest {

@@ -24,7 +24,7 @@
 #include "friend_hw_sim/robot_model.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/blocks/frames.h"
-#include "latest_message.h"
+#include "rostest_util.h"
 
 namespace {
 

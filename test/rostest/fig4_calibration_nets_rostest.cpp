@@ -21,7 +21,7 @@
 #include "imagenets/BlockNodeletStatus.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/blocks/frames.h"
-#include "latest_message.h"
+#include "rostest_util.h"
 
 namespace {
 

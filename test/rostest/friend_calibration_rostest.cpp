@@ -20,7 +20,7 @@
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"
 #include "imagenets/blocks/frames.h"
-#include "latest_message.h"
+#include "rostest_util.h"
 
 namespace {
 

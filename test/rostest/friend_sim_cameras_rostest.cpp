@@ -21,7 +21,7 @@
 #include "friend_hw_sim/robot_model.h"
 #include "imagenets/blocks/marker.h"
 #include "imagenets/MoveJointsAction.h"
-#include "latest_message.h"
+#include "rostest_util.h"
 
 namespace {
 

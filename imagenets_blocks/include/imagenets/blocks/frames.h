@@ -13,6 +13,7 @@
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Quaternion.h>
 #include <geometry_msgs/Transform.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Vector3.h>
 
 namespace imagenets {
@@ -42,6 +43,9 @@ geometry_msgs::Vector3 toVector3Msg(const Eigen::Vector3d& v);
 geometry_msgs::Point toPointMsg(const Eigen::Vector3d& v);
 geometry_msgs::Pose toPose(const Eigen::Isometry3d& t);
 geometry_msgs::Transform toTransform(const Eigen::Isometry3d& t);
+// parent -> child, stamped: what tf2 broadcasters and frame ports carry.
+geometry_msgs::TransformStamped toTransformStamped(const Eigen::Isometry3d& t, const std::string& parent,
+                                                   const std::string& child, const ros::Time& stamp);
 
 // Angle (radians, 0..pi) of the rotation that takes a to b.
 double rotationAngle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);

@@ -1,11 +1,25 @@
-// The newest message of a topic, for the rostest nodes: wait for one, or for one stamped at or
-// after a given time (a message from after an action, not an old latched one).
+// Helpers of the rostest nodes: wait for a condition, and the newest message of a topic (wait
+// for one, or for one stamped at or after a given time: a message from after an action, not an
+// old latched one).
 #pragma once
 
+#include <chrono>
+#include <functional>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include <ros/ros.h>
+
+// Waits (an AsyncSpinner delivers messages meanwhile) until `done` holds or `seconds` pass.
+inline bool waitFor(const std::function<bool()>& done, double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < end) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return done();
+}
 
 template <class M>
 class LatestMessage {
@@ -18,15 +32,15 @@ class LatestMessage {
   }
   // Null after `timeout` seconds (wall time) without a message.
   boost::shared_ptr<const M> wait(double timeout) {
-    return waitFor(timeout, [](const M&) { return true; });
+    return waitUntil(timeout, [](const M&) { return true; });
   }
   boost::shared_ptr<const M> waitFrom(const ros::Time& after, double timeout) {
-    return waitFor(timeout, [&after](const M& m) { return m.header.stamp >= after; });
+    return waitUntil(timeout, [&after](const M& m) { return m.header.stamp >= after; });
   }
 
  private:
   template <class Accept>
-  boost::shared_ptr<const M> waitFor(double timeout, const Accept& accept) {
+  boost::shared_ptr<const M> waitUntil(double timeout, const Accept& accept) {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
     for (;;) {
       auto m = get();
