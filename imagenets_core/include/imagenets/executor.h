@@ -19,27 +19,17 @@
 #include <vector>
 
 #include "imagenets/net.h"
+#include "imagenets/run_events.h"
 
 namespace imagenets {
 
 class ThreadPool;
 
-enum class BlockStatus { Pending, Ok, Failed, NotRun };
-const char* statusName(BlockStatus status);
-
-struct BlockStats {
-  BlockStatus status = BlockStatus::Pending;
-  std::string message;     // why it failed or did not run
-  size_t runs = 0;         // completed process() calls (feedback trials included)
-  double last_ms = 0.0;
-  double mean_ms = 0.0;
-  std::string last_error;  // the last exception text, kept after later successes
-};
-
 struct RunReport {
   std::vector<std::string> ran;     // blocks that ran, in completion order
   std::vector<std::string> failed;  // "block: message"
   std::vector<std::string> not_run; // "block: reason"
+  bool cancelled = false;           // cancel() stopped the run; the blocks not reached stay out of date
   bool ok() const { return failed.empty(); }
 };
 
@@ -84,6 +74,16 @@ class Executor {
     return output(block_port).as<M>();
   }
   BlockStats stats(const std::string& block) const;
+
+  // Run events (run_events.h): block started / finished / cached, feedback trial, sub-net
+  // repetition, run finished. Returns an id for removeObserver. Thread-safe.
+  int addObserver(RunObserver observer);
+  void removeObserver(int id);
+  // Stops the run in progress (thread-safe, from any thread; a no-op when idle): no block, feedback
+  // trial or sub-net repetition starts after it. Blocks not reached are NotRun ("cancelled") and
+  // stay out of date, so the next run() continues where this one stopped; the run returns a report
+  // with `cancelled` set. The executor stays usable.
+  void cancel();
 
  private:
   using Store = std::vector<std::vector<Value>>;        // per node, per output port

@@ -1,0 +1,60 @@
+// Run events and cancel: the one observer API through which every host watches a run (the nodelet
+// host's ~status, `imagenets run`'s progress lines, the calibration action's feedback, the
+// Designer). Events come from the executor; a block that runs something inside (a sub-net) passes
+// its inner events on through its Context, so observers of the outer executor see them too.
+//
+//   exec->addObserver([](const imagenets::RunEvent& e) {
+//     if (e.kind == imagenets::RunEventKind::BlockFinished) std::cout << e.block << " " << e.stats.last_ms;
+//   });
+//   std::thread t([&] { exec->run(); });
+//   exec->cancel();   // from any thread: the run stops between blocks / trials / repetitions
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
+
+namespace imagenets {
+
+enum class BlockStatus { Pending, Ok, Failed, NotRun };
+const char* statusName(BlockStatus status);
+
+// One stats type for every host: what the last invocation of a block did.
+struct BlockStats {
+  BlockStatus status = BlockStatus::Pending;
+  std::string message;     // why it failed or did not run
+  size_t runs = 0;         // completed process() calls (feedback trials included)
+  double last_ms = 0.0;
+  double mean_ms = 0.0;
+  std::string last_error;  // the last exception text, kept after later successes
+};
+
+enum class RunEventKind {
+  BlockStarted,   // process() is about to be called (not sent for feedback trials' inner runs)
+  BlockFinished,  // the block ran, failed or was not run: `stats` says which and why
+  BlockCached,    // the run did not need the block: its outputs are still valid (served from cache)
+  FeedbackTrial,  // one candidate of a feedback search was scored: `value`, `score`, `index` of `count`
+  Repetition,     // a repeated sub-net finished repetition `index` (1-based) of `count`
+  RunFinished,    // run()/runBlock()/runAll() returned (`message`: "cancelled" when it was)
+};
+const char* eventName(RunEventKind kind);
+
+struct RunEvent {
+  RunEventKind kind = RunEventKind::BlockFinished;
+  // The block's name in the observed executor's net. Events of blocks inside a sub-net carry the
+  // path "outer/inner" (any depth), so one observer sees the whole hierarchy.
+  std::string block;
+  BlockStats stats;     // BlockFinished, BlockCached: the block's stats after the event
+  std::string message;  // FeedbackTrial: the tuned property; Repetition: "failed: ..." if it failed
+  double value = std::numeric_limits<double>::quiet_NaN();  // FeedbackTrial: the candidate tried
+  double score = std::numeric_limits<double>::quiet_NaN();  // FeedbackTrial: its score (NaN: invalid)
+  int index = 0;  // FeedbackTrial: trials done so far; Repetition: the repetition just done (1-based)
+  int count = 0;  // FeedbackTrial: the number of candidates; Repetition: N
+};
+
+// Called on the thread that produced the event (a pool thread, possibly several at once): an
+// observer must be thread-safe and quick, and must not call back into the executor that sends it.
+using RunObserver = std::function<void(const RunEvent&)>;
+
+}  // namespace imagenets
