@@ -1,4 +1,5 @@
-import React, { useEffect, useState } from 'react';
+import React, { useEffect, useRef, useState } from 'react';
+import { FileDialog } from './Dialogs.jsx';
 
 // The selected block's properties with typed editors; the engine checks every value (paper 3.2).
 export function PropertiesPanel({ block, entry, net, request, onRename }) {
@@ -24,7 +25,7 @@ export function PropertiesPanel({ block, entry, net, request, onRename }) {
         <div key={p.name} className="property" data-property={p.name}>
           <label title={p.doc}>{p.name} <i>{p.kind}</i></label>
           <PropertyEditor prop={p} key={`${block.name}.${p.name}.${block.properties[p.name]}`}
-            text={block.properties[p.name] ?? String(p.default ?? '')} onCommit={(t) => set(p.name, t)} />
+            text={block.properties[p.name] ?? String(p.default ?? '')} onCommit={(t) => set(p.name, t)} request={request} />
           {errors[p.name] && <div className="error" data-testid="property-error">{errors[p.name]}</div>}
           <div className="doc">{p.doc}</div>
           {(p.kind === 'int' || p.kind === 'double') &&
@@ -35,9 +36,15 @@ export function PropertiesPanel({ block, entry, net, request, onRename }) {
   );
 }
 
-function PropertyEditor({ prop, text, onCommit }) {
+function PropertyEditor({ prop, text, onCommit, request }) {
   const [draft, setDraft] = useState(text);
-  const commit = (value = draft) => { if (String(value) !== text) onCommit(value); };
+  const [browsing, setBrowsing] = useState(false);
+  const committed = useRef(text); // Enter then blur must not send the same value twice
+  const commit = (value = draft) => {
+    if (String(value) === committed.current) return;
+    committed.current = String(value);
+    onCommit(value);
+  };
   const onKey = (e) => { if (e.key === 'Enter') commit(e.target.value); };
   if (prop.kind === 'bool') {
     return <input type="checkbox" checked={text === 'true'} onChange={(e) => onCommit(e.target.checked)} />;
@@ -60,6 +67,9 @@ function PropertyEditor({ prop, text, onCommit }) {
       <input type="text" className={numeric ? 'number' : prop.path ? 'path' : 'text'} value={draft}
         data-testid={`property-${prop.name}`} placeholder={prop.path ? 'file path' : ''}
         onChange={(e) => setDraft(e.target.value)} onKeyDown={onKey} onBlur={() => commit()} />
+      {prop.path && <button title="choose a file" onClick={() => setBrowsing(true)}>…</button>}
+      {browsing && <FileDialog title="Choose" initialPath={text} request={request}
+        onDone={async (path) => commit(path)} onClose={() => setBrowsing(false)} />}
     </div>
   );
 }

@@ -196,6 +196,51 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     assert.deepEqual(await linkIds(page), links);
   });
 
+  await t.test('copy and paste keep the links inside the selection; undo removes the pasted blocks', async () => {
+    const blocks = await blockNames(page);
+    const links = await linkIds(page);
+    await select(page, gray);
+    await page.keyboard.down('Control');
+    await click(page, `${nodeSel(threshold)} .block-name`);
+    await page.keyboard.up('Control');
+    await until('two selected', async () => (await page.$$('.react-flow__node.selected')).length === 2);
+    await page.mouse.move(...at(0.5, 0.95));
+    await page.keyboard.down('Control');
+    await page.keyboard.press('c');
+    await page.keyboard.press('v');
+    await page.keyboard.up('Control');
+    await until('two pasted blocks', async () => (await blockNames(page)).length === blocks.length + 2);
+    const pasted = (await blockNames(page)).filter((n) => !blocks.includes(n));
+    await until('one pasted link', async () => (await linkIds(page)).length === links.length + 1);
+    const added = (await linkIds(page)).filter((l) => !links.includes(l));
+    assert.equal(added.length, 1);
+    assert.ok(pasted.some((n) => added[0].startsWith(`${n}.image->`)) && pasted.some((n) => added[0].endsWith(`${n}.image`)), added[0]);
+    await page.mouse.click(...at(0.3, 0.9));
+    await page.keyboard.down('Control');
+    await page.keyboard.press('z');
+    await page.keyboard.up('Control');
+    await until('the paste undone', async () => (await blockNames(page)).length === blocks.length);
+    assert.deepEqual(await linkIds(page), links);
+  });
+
+  await t.test('a link dropped on empty canvas offers only blocks taking its type', async () => {
+    const from = await (await page.waitForSelector(`.react-flow__handle.source[data-nodeid="${quality}"][data-handleid="score"]`)).boundingBox();
+    const [x, y] = at(0.9, 0.85);
+    await page.mouse.move(from.x + from.width / 2, from.y + from.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(x, y, { steps: 10 });
+    await page.mouse.up();
+    await page.waitForSelector('[data-testid="block-search-popup"] .search-result', { timeout: LONG });
+    const offered = await page.$$eval('[data-testid="block-search-popup"] .search-result', (rs) => rs.map((r) => r.dataset.type).sort());
+    const listed = run(imagenets, ['blocks', '--input-type', 'std_msgs/Float64']);
+    assert.equal(listed.code, 0, listed.out);
+    const expected = [...listed.out.matchAll(/^ {2}(\S+) - /gm)].map((m) => m[1]).sort();
+    assert.ok(expected.length > 0, listed.out);
+    assert.deepEqual(offered, expected);
+    await page.keyboard.press('Escape');
+    await until('the popup closed', async () => !(await page.$('[data-testid="block-search-popup"]')));
+  });
+
   await t.test('saves; the engine loads and runs the saved net as drawn', async () => {
     const file = path.join(dir, 'drawn.yaml');
     await click(page, '[data-testid="save-as"]');
