@@ -52,7 +52,7 @@ std::unique_ptr<Executor> load(const std::string& yaml, int threads) {
 
 }  // namespace
 
-IMAGENETS_REGISTER_BLOCK(Increment, "bench/Increment", "bench", "x + 1");
+IMAGENETS_REGISTER_BLOCK_TYPE(Increment, "bench/Increment", "bench", "x + 1");
 
 int main(int argc, char** argv) {
   const std::string image_path = argc > 1 ? argv[1] : "config/images/scene.png";

@@ -1,10 +1,11 @@
 // The committed nodelet plug-in description must list every block of the installed libraries,
-// spelled as IMAGENETS_REGISTER_BLOCK exports it: a new block without a regenerated file fails.
+// spelled as IMAGENETS_REGISTER_BLOCK / IMAGENETS_EXPORT_BLOCK_NODELET export it: a new block without a regenerated file fails.
 #include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
 
+#include "imagenets/nodelet_plugins.h"
 #include "imagenets/registry.h"
 
 TEST(PluginXml, CommittedFileMatchesTheRegistry) {
@@ -12,17 +13,21 @@ TEST(PluginXml, CommittedFileMatchesTheRegistry) {
   ASSERT_TRUE(file) << "imagenets_plugins.xml missing";
   std::stringstream committed;
   committed << file.rdbuf();
-  EXPECT_EQ(committed.str(), imagenets::BlockRegistry::instance().pluginXml())
+  EXPECT_EQ(committed.str(), imagenets::nodeletPluginXml())
       << "imagenets_plugins.xml is out of date: run\n"
          "  build/devel/lib/imagenets/imagenets blocks --plugin-xml > imagenets_plugins.xml";
 }
 
 TEST(PluginXml, ListsEveryBlockOfTheBlockLibrary) {
-  const std::string xml = imagenets::BlockRegistry::instance().pluginXml();
+  const std::string xml = imagenets::nodeletPluginXml();
   for (const imagenets::BlockInfo* info : imagenets::BlockRegistry::instance().all()) {
     if (info->library != "libimagenets_blocks.so") continue;
     EXPECT_NE(xml.find("<class name=\"" + info->type + "\""), std::string::npos) << info->type;
   }
   EXPECT_NE(xml.find("<library path=\"lib/libimagenets_blocks\">"), std::string::npos);
   EXPECT_NE(xml.find("imagenets::BlockNodelet&lt;imagenets::blocks::Threshold&gt;"), std::string::npos);
+  // The engine's own blocks are exported by the nodelet layer (the engine knows no nodelets).
+  EXPECT_NE(xml.find("<library path=\"lib/libimagenets_nodelet\">"), std::string::npos);
+  EXPECT_NE(xml.find("imagenets::BlockNodelet&lt;imagenets::SubNetBlock&gt;"), std::string::npos);
+  EXPECT_EQ(xml.find("lib/libimagenets_core\""), std::string::npos);
 }

@@ -2,7 +2,7 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "imagenets/block.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "imagenets/time.h"
 
 namespace imagenets {

@@ -4,7 +4,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "imagenets/time.h"
 
 namespace imagenets {

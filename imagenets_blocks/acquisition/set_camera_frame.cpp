@@ -7,7 +7,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

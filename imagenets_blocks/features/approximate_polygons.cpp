@@ -1,6 +1,6 @@
 #include <opencv2/imgproc.hpp>
 
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "polygon_ports.h"
 
 namespace imagenets {

@@ -1,7 +1,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "polygon_ports.h"
 
 namespace imagenets {

@@ -4,7 +4,7 @@
 #include <sensor_msgs/JointState.h>
 
 #include "frame_ports.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

@@ -97,6 +97,15 @@ geometry_msgs::Pose toPose(const Eigen::Isometry3d& t) {
   return p;
 }
 
+geometry_msgs::Pose toPose(const geometry_msgs::Transform& t) {
+  geometry_msgs::Pose p;
+  p.position.x = t.translation.x;
+  p.position.y = t.translation.y;
+  p.position.z = t.translation.z;
+  p.orientation = t.rotation;
+  return p;
+}
+
 geometry_msgs::Transform toTransform(const Eigen::Isometry3d& t) {
   geometry_msgs::Transform m;
   m.translation = toVector3Msg(t.translation());

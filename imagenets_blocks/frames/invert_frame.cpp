@@ -1,5 +1,5 @@
 #include "frame_ports.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

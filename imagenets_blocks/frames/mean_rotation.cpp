@@ -1,7 +1,7 @@
 #include <geometry_msgs/QuaternionStamped.h>
 
 #include "frame_ports.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

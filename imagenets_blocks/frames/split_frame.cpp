@@ -2,7 +2,7 @@
 #include <geometry_msgs/Vector3Stamped.h>
 
 #include "frame_ports.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

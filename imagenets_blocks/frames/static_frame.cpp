@@ -1,7 +1,7 @@
 #include <cmath>
 
 #include "frame_ports.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "imagenets/time.h"
 
 namespace imagenets {

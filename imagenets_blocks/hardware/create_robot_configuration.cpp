@@ -5,7 +5,7 @@
 #include <sensor_msgs/JointState.h>
 
 #include "friend_hw_sim/robot_model.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "ros_access.h"
 
 namespace imagenets {

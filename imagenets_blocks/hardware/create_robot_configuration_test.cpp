@@ -3,25 +3,14 @@
 #include <gtest/gtest.h>
 #include <sensor_msgs/JointState.h>
 
-#include "imagenets/registry.h"
+#include "imagenets/blocks/block_harness.h"
 
-using namespace imagenets;
-
-namespace {
-// Runs a block once on the given inputs (by port order) and returns its outputs.
-std::vector<Value> runOnce(Block& block, std::vector<Value> inputs = {}) {
-  inputs.resize(block.inputs().size());
-  Context ctx("under_test", block.inputs(), block.outputs(), inputs, block.propertyValues());
-  block.process(ctx);
-  return ctx.outputs();
-}
-}  // namespace
+using imagenets::blocks::BlockHarness;
 
 TEST(CreateRobotConfiguration, AnglesInDegreesBecomeRadiansWithJointNames) {
-  auto block = BlockRegistry::instance().create("imagenets/CreateRobotConfiguration");
-  block->setProperty("angles", std::vector<double>{10, 20, 30, 40, 50, 60, 70});
-  const auto out = runOnce(*block);
-  const auto js = out[block->outputIndex("configuration")].as<sensor_msgs::JointState>();
+  BlockHarness h("imagenets/CreateRobotConfiguration");
+  h.set("angles", std::vector<double>{10, 20, 30, 40, 50, 60, 70}).run();
+  const auto js = h.output<sensor_msgs::JointState>("configuration");
   ASSERT_TRUE(js);
   ASSERT_EQ(js->name.size(), 7u);
   EXPECT_EQ(js->name[0], "arm_joint_1");
@@ -29,23 +18,18 @@ TEST(CreateRobotConfiguration, AnglesInDegreesBecomeRadiansWithJointNames) {
 }
 
 TEST(CreateRobotConfiguration, HeadGroupHasPanAndTilt) {
-  auto block = BlockRegistry::instance().create("imagenets/CreateRobotConfiguration");
-  block->setProperty("group", std::string("head"));
-  block->setProperty("angles", std::vector<double>{-10, 30});
-  const auto js = runOnce(*block)[0].as<sensor_msgs::JointState>();
-  EXPECT_EQ(js->name, (std::vector<std::string>{"head_pan_joint", "head_tilt_joint"}));
+  BlockHarness h("imagenets/CreateRobotConfiguration");
+  h.set("group", std::string("head")).set("angles", std::vector<double>{-10, 30}).run();
+  EXPECT_EQ(h.output<sensor_msgs::JointState>("configuration")->name,
+            (std::vector<std::string>{"head_pan_joint", "head_tilt_joint"}));
 }
 
 TEST(CreateRobotConfiguration, OutOfLimitOrWrongCountIsAClearError) {
-  auto block = BlockRegistry::instance().create("imagenets/CreateRobotConfiguration");
-  block->setProperty("angles", std::vector<double>{0, 0, 0, 150, 0, 0, 0});
-  try {
-    runOnce(*block);
-    FAIL() << "expected an error";
-  } catch (const BlockError& e) {
-    EXPECT_NE(std::string(e.what()).find("property 'angles'"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("arm_joint_4"), std::string::npos) << e.what();
-  }
-  block->setProperty("angles", std::vector<double>{0, 0});
-  EXPECT_THROW(runOnce(*block), BlockError);
+  BlockHarness h("imagenets/CreateRobotConfiguration");
+  h.set("angles", std::vector<double>{0, 0, 0, 150, 0, 0, 0});
+  const std::string error = h.runError();
+  EXPECT_NE(error.find("property 'angles'"), std::string::npos) << error;
+  EXPECT_NE(error.find("arm_joint_4"), std::string::npos) << error;
+  EXPECT_NE(h.set("angles", std::vector<double>{0, 0}).runError(), "");
+  EXPECT_EQ(h.stats().failures, 2u);
 }

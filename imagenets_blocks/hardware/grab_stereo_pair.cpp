@@ -10,7 +10,7 @@
 #include <sensor_msgs/JointState.h>
 #include <std_srvs/Trigger.h>
 
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "ros_access.h"
 
 namespace imagenets {

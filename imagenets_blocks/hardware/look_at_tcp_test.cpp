@@ -5,20 +5,18 @@
 #include <sensor_msgs/JointState.h>
 
 #include "friend_hw_sim/robot_model.h"
-#include "imagenets/registry.h"
+#include "imagenets/blocks/block_harness.h"
 
-using namespace imagenets;
+using imagenets::blocks::BlockHarness;
 
 TEST(LookAtTcp, CentresTheTcpOnTheStereoAxisOfTheNominalRobot) {
-  auto block = BlockRegistry::instance().create("imagenets/LookAtTcp");
+  BlockHarness h("imagenets/LookAtTcp");
   const auto d = friend_hw_sim::loadRobotDescription("config/friend/robot.yaml");
   auto arm = boost::make_shared<sensor_msgs::JointState>();
   arm->name = d.arm.names();
   arm->position = {-0.5, 1.0, 1.2, 1.3, -0.3, 1.2, 0.0};
-  std::vector<Value> inputs{PortType::of<sensor_msgs::JointState>().wrap(boost::shared_ptr<const sensor_msgs::JointState>(arm))};
-  Context ctx("look", block->inputs(), block->outputs(), inputs, block->propertyValues());
-  block->process(ctx);
-  const auto head = ctx.outputs()[block->outputIndex("head_configuration")].as<sensor_msgs::JointState>();
+  h.input("arm_configuration", arm).run();
+  const auto head = h.output<sensor_msgs::JointState>("head_configuration");
   ASSERT_TRUE(head);
   ASSERT_EQ(head->position.size(), 2u);
   const friend_hw_sim::RobotModel model(d);
@@ -30,17 +28,13 @@ TEST(LookAtTcp, CentresTheTcpOnTheStereoAxisOfTheNominalRobot) {
 }
 
 TEST(LookAtTcp, MissingArmJointIsNamed) {
-  auto block = BlockRegistry::instance().create("imagenets/LookAtTcp");
+  BlockHarness h("imagenets/LookAtTcp");
   auto arm = boost::make_shared<sensor_msgs::JointState>();
   arm->name = {"arm_joint_1"};
   arm->position = {0.0};
-  std::vector<Value> inputs{PortType::of<sensor_msgs::JointState>().wrap(boost::shared_ptr<const sensor_msgs::JointState>(arm))};
-  Context ctx("look", block->inputs(), block->outputs(), inputs, block->propertyValues());
-  try {
-    block->process(ctx);
-    FAIL() << "expected an error";
-  } catch (const BlockError& e) {
-    EXPECT_NE(std::string(e.what()).find("arm_joint_2"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("arm_configuration"), std::string::npos) << e.what();
-  }
+  const std::string error = h.input("arm_configuration", arm).runError();
+  EXPECT_NE(error.find("arm_joint_2"), std::string::npos) << error;
+  EXPECT_NE(error.find("arm_configuration"), std::string::npos) << error;
+  // A required input without a value: the one invocation path names it, the block never runs.
+  EXPECT_EQ(h.clear("arm_configuration").runError(), "input 'arm_configuration' has no value");
 }

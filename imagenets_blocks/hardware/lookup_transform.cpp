@@ -6,7 +6,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <tf2_ros/buffer.h>
 
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "ros_access.h"
 
 namespace imagenets {

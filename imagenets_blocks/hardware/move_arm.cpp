@@ -1,5 +1,5 @@
 // Moves FRIEND's arm to a configuration through its imagenets/MoveJoints action server.
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "move_joint_group.h"
 
 namespace imagenets {

@@ -2,7 +2,7 @@
 #include <geometry_msgs/WrenchStamped.h>
 #include <sensor_msgs/JointState.h>
 
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "ros_access.h"
 
 namespace imagenets {

@@ -1,7 +1,7 @@
 // Reads the robot's current joint angles (the next sensor_msgs/JointState message).
 #include <sensor_msgs/JointState.h>
 
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "ros_access.h"
 
 namespace imagenets {

@@ -3,7 +3,7 @@
 #include <geometry_msgs/PoseStamped.h>
 
 #include "imagenets/WorldModelGet.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "ros_access.h"
 
 namespace imagenets {

@@ -2,7 +2,7 @@
 #include <geometry_msgs/PoseStamped.h>
 
 #include "imagenets/WorldModelSet.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "ros_access.h"
 
 namespace imagenets {

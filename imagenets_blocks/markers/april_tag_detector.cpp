@@ -6,7 +6,7 @@
 #include "imagenets/blocks/apriltag_marker.h"
 #include "imagenets/blocks/image.h"
 #include "imagenets/blocks/marker_msgs.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

@@ -8,7 +8,7 @@
 #include "imagenets/blocks/marker.h"
 #include "imagenets/blocks/marker_msgs.h"
 #include "imagenets/blocks/marker_scene.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

@@ -7,7 +7,7 @@
 
 #include "imagenets/blocks/image.h"
 #include "imagenets/blocks/marker_msgs.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace marker {

@@ -6,7 +6,7 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

@@ -1,7 +1,7 @@
 #include <std_msgs/Float64.h>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

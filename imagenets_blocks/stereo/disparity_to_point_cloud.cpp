@@ -4,7 +4,7 @@
 
 #include "imagenets/blocks/image.h"
 #include "imagenets/blocks/point_cloud.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

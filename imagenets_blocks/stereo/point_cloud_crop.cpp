@@ -2,7 +2,7 @@
 #include <cstring>
 
 #include "imagenets/blocks/point_cloud.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "imagenets/block.h"
 
 namespace imagenets {

@@ -1,5 +1,5 @@
 #include "imagenets/blocks/point_cloud.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "imagenets/block.h"
 
 namespace imagenets {

@@ -4,7 +4,7 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "imagenets/time.h"
 
 namespace imagenets {

@@ -2,7 +2,7 @@
 #include <unordered_map>
 
 #include "imagenets/blocks/point_cloud.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 #include "imagenets/block.h"
 
 namespace imagenets {

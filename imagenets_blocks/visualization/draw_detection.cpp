@@ -7,7 +7,7 @@
 
 #include "imagenets/blocks/frames.h"
 #include "imagenets/blocks/image.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

@@ -6,7 +6,7 @@
 
 #include "../frames/frame_ports.h"
 #include "imagenets/blocks/point_cloud.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

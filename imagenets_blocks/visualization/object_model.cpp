@@ -1,7 +1,7 @@
 #include <visualization_msgs/Marker.h>
 
 #include "../frames/frame_ports.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

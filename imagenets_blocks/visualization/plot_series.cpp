@@ -2,7 +2,7 @@
 
 #include "imagenets/blocks/image.h"
 #include "imagenets/blocks/plot.h"
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace blocks {

@@ -52,6 +52,13 @@ const PropertyValue& Context::propertyValue(const std::string& name) const {
   return it->second;
 }
 
+std::string portList(const std::vector<PortSpec>& ports) {
+  if (ports.empty()) return "none";
+  std::string out;
+  for (const auto& p : ports) out += (out.empty() ? "" : ", ") + p.name + " [" + p.type->name + "]";
+  return out;
+}
+
 namespace {
 template <class T>
 const T* findByName(const std::vector<T>& items, const std::string& name) {

@@ -9,7 +9,7 @@
 #include <imagenets/FeedbackTrace.h>
 #include <std_msgs/Float64.h>
 
-#include "imagenets/registry.h"
+#include "imagenets/block_invocation.h"
 #include "thread_pool.h"
 
 namespace imagenets {
@@ -211,8 +211,7 @@ void Executor::setPropertyText(const std::string& block, const std::string& prop
   if (!spec) throw NetError({net_->origin() + ": block '" + block + "': unknown property '" + property + "'"});
   PropertyValue v;
   try {
-    v = spec->parse(text);
-    if (spec->isPath()) v = resolvePath(std::get<std::string>(v), "");
+    v = spec->parse(text);  // a relative path resolves against the working directory
   } catch (const std::exception& e) {
     throw NetError({net_->origin() + ": block '" + block + "': property '" + property + "': " + e.what()});
   }
@@ -238,16 +237,8 @@ BlockStats Executor::statsOf(int node) const {
 
 BlockStats Executor::record(int node, BlockStatus status, const std::string& message, double ms, bool counted) {
   std::lock_guard<std::mutex> lock(stats_mutex_);
-  BlockStats& s = stats_[node];
-  s.status = status;
-  s.message = message;
-  if (status == BlockStatus::Failed) s.last_error = message;
-  if (counted) {
-    ++s.runs;
-    s.last_ms = ms;
-    s.mean_ms += (ms - s.mean_ms) / static_cast<double>(s.runs);
-  }
-  return s;
+  stats_[node].record(status, message, ms, counted);
+  return stats_[node];
 }
 
 void Executor::finish(int node, BlockStatus status, const std::string& message, double ms, bool counted) {
@@ -264,35 +255,26 @@ void Executor::skipCancelled(int unit, RunReport& report) {
   }
 }
 
-std::vector<Value> Executor::gatherInputs(int node, const Store& store, std::string& missing) const {
+std::vector<Value> Executor::gatherInputs(int node, const Store& store) const {
   const Net::Node& n = net_->node(node);
   std::vector<Value> values(n.input_links.size());
   for (size_t i = 0; i < values.size(); ++i) {
     const Endpoint& link = n.input_links[i];
     values[i] = link.valid() ? store[link.node][link.port] : external_inputs_[node][i];
-    if (values[i] || n.block->inputs()[i].optional || !missing.empty()) continue;
-    missing = "input '" + n.block->inputs()[i].name + "' has no value";
-    missing += link.valid() ? " (block '" + net_->node(link.node).name + "' produced none)" : " (not linked, not set)";
   }
   return values;
+}
+
+std::string Executor::explainMissing(int node, int input) const {
+  const Net::Node& n = net_->node(node);
+  const Endpoint& link = n.input_links[input];
+  return "input '" + n.block->inputs()[input].name + "' has no value" +
+         (link.valid() ? " (block '" + net_->node(link.node).name + "' produced none)" : " (not linked, not set)");
 }
 
 void Executor::runNode(int node, Store& store, RunReport& report, const Overrides* overrides) {
   Net::Node& n = net_->node(node);
   const bool trial = overrides != nullptr;  // a feedback trial reports through FeedbackTrial events only
-  auto done = [&](BlockStatus status, const std::string& message, double ms, bool counted) {
-    if (trial) record(node, status, message, ms, counted);
-    else finish(node, status, message, ms, counted);
-  };
-  std::string missing;
-  std::vector<Value> inputs = gatherInputs(node, store, missing);
-  if (!missing.empty()) {
-    store[node].assign(n.block->outputs().size(), Value());
-    done(BlockStatus::NotRun, missing, 0.0, false);
-    std::lock_guard<std::mutex> lock(report_mutex_);
-    report.not_run.push_back(n.name + ": " + missing);
-    return;
-  }
   PropertyValues properties = n.block->propertyValues();
   if (overrides) {
     auto it = overrides->find(node);
@@ -300,40 +282,25 @@ void Executor::runNode(int node, Store& store, RunReport& report, const Override
       for (const auto& kv : it->second) properties[kv.first] = kv.second;
     }
   }
-  Context ctx(n.name, n.block->inputs(), n.block->outputs(), std::move(inputs), std::move(properties));
-  ctx.setRunChannel(RunChannel{trial ? RunObserver() : [this](const RunEvent& e) { emit(e); },
-                               [this] { return cancelled(); }});
-  if (!trial && watched()) emitBlockEvent(RunEventKind::BlockStarted, node, statsOf(node));
-  const auto start = std::chrono::steady_clock::now();
-  std::string error;
-  try {
-    n.block->process(ctx);
-  } catch (const RunCancelled& e) {
-    if (cancelled()) {
-      // Stopped early on cancel: previous outputs kept, out of date (a trial simply gives no score).
-      if (!trial) skipCancelled(node, report);
-      return;
-    }
-    error = "stopped as if cancelled, but the run was not cancelled";
-  } catch (const std::exception& e) {
-    error = e.what();
-  } catch (...) {
-    error = "unknown exception";
+  BlockInvocation run = invokeBlock(
+      *n.block, n.name, gatherInputs(node, store), std::move(properties),
+      RunChannel{trial ? RunObserver() : [this](const RunEvent& e) { emit(e); }, [this] { return cancelled(); }},
+      [&] {
+        if (!trial && watched()) emitBlockEvent(RunEventKind::BlockStarted, node, statsOf(node));
+      });
+  if (run.cancelled) {
+    // Stopped early on cancel: previous outputs kept, out of date (a trial simply gives no score).
+    if (!trial) skipCancelled(node, report);
+    return;
   }
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (error.empty()) {
-    store[node] = std::move(ctx.outputs());
-    done(BlockStatus::Ok, "", ms, true);
-    std::lock_guard<std::mutex> lock(report_mutex_);
-    report.ran.push_back(n.name);
-  } else {
-    store[node].assign(n.block->outputs().size(), Value());
-    const std::string type = n.block->info() ? n.block->info()->type : "?";
-    const std::string message = "block '" + n.name + "' (" + type + "): " + error;
-    done(BlockStatus::Failed, message, ms, true);
-    std::lock_guard<std::mutex> lock(report_mutex_);
-    report.failed.push_back(message);
-  }
+  std::string message = run.missing_input >= 0 ? explainMissing(node, run.missing_input) : run.message;
+  if (trial) record(node, run.status, message, run.ms, run.processed);
+  else finish(node, run.status, message, run.ms, run.processed);
+  store[node] = std::move(run.outputs);
+  std::lock_guard<std::mutex> lock(report_mutex_);
+  if (run.status == BlockStatus::Ok) report.ran.push_back(n.name);
+  else if (run.status == BlockStatus::Failed) report.failed.push_back(message);
+  else report.not_run.push_back(n.name + ": " + message);
 }
 
 void Executor::execute(const std::vector<int>& nodes, Store& store, RunReport& report, const Overrides* overrides) {
@@ -427,9 +394,9 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
   const std::vector<double>& candidates = f.values;
   const int count = static_cast<int>(candidates.size());
   const auto& region = feedback_region_[node];
-  std::string missing;
-  gatherInputs(node, store, missing);
-  if (!missing.empty()) {
+  const int missing_input = missingInput(*n.block, gatherInputs(node, store));
+  if (missing_input >= 0) {
+    const std::string missing = explainMissing(node, missing_input);
     for (int m : region) {
       store[m].assign(net_->node(m).block->outputs().size(), Value());
       finish(m, BlockStatus::NotRun, m == node ? missing : "block '" + n.name + "' did not run", 0.0, false);

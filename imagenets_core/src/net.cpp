@@ -2,16 +2,13 @@
 
 #include <algorithm>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 
 #include <boost/filesystem.hpp>
-#include <ros/package.h>
 #include <yaml-cpp/yaml.h>
 
-#include "imagenets/registry.h"
-#include <imagenets/FeedbackTrace.h>
+#include "imagenets/net_builder.h"
 
 namespace imagenets {
 
@@ -223,34 +220,8 @@ NetSpec parseNetFile(const std::string& path) {
   return parseNetText(ss.str(), path, dir);
 }
 
-std::string resolvePath(const std::string& path, const std::string& base_dir) {
-  std::string out = path;
-  static const std::regex find_re(R"(\$\(find ([A-Za-z0-9_]+)\))");
-  std::smatch m;
-  while (std::regex_search(out, m, find_re)) {
-    std::string pkg_path = ros::package::getPath(m[1].str());
-    if (pkg_path.empty()) throw std::runtime_error("$(find " + m[1].str() + "): ROS package not found");
-    out = m.prefix().str() + pkg_path + m.suffix().str();
-  }
-  if (out.empty() || out[0] == '/' || base_dir.empty()) return out;
-  return (boost::filesystem::path(base_dir) / out).lexically_normal().string();
-}
-
 // ---------------------------------------------------------------------------------------------
 // Building
-
-namespace {
-
-std::string describe(const BlockSpec& b) { return "block '" + b.name + "' (" + b.type + ")"; }
-
-std::string portList(const std::vector<PortSpec>& ports) {
-  if (ports.empty()) return "none";
-  std::string out;
-  for (const auto& p : ports) out += (out.empty() ? "" : ", ") + p.name + " [" + p.type->name + "]";
-  return out;
-}
-
-}  // namespace
 
 int Net::findNode(const std::string& name) const {
   for (size_t i = 0; i < nodes_.size(); ++i) {
@@ -260,191 +231,12 @@ int Net::findNode(const std::string& name) const {
 }
 
 std::unique_ptr<Net> Net::build(const NetSpec& spec) {
-  auto net = std::make_unique<Net>();
-  net->origin_ = spec.origin;
-  net->base_dir_ = spec.base_dir;
-  std::vector<std::string> errors;
-  LoadContext::Scope scope(spec);
-
-  // Blocks and their properties.
-  std::set<std::string> names;
-  for (const BlockSpec& b : spec.blocks) {
-    const std::string at = b.loc.str() + ": ";
-    if (b.name.empty() || b.name.find_first_of(". \t/") != std::string::npos) {
-      errors.push_back(at + "block name '" + b.name + "' may not contain '.', '/' or spaces");
-      continue;
-    }
-    if (!names.insert(b.name).second) {
-      errors.push_back(at + "block '" + b.name + "' defined twice");
-      continue;
-    }
-    const BlockInfo* info = BlockRegistry::instance().find(b.type);
-    if (!info) {
-      std::string msg = at + "block '" + b.name + "': unknown block type '" + b.type + "'";
-      auto near = BlockRegistry::instance().suggest(b.type);
-      if (!near.empty()) {
-        msg += "; did you mean ";
-        for (size_t i = 0; i < near.size(); ++i) msg += (i ? ", " : "") + std::string("'") + near[i] + "'";
-        msg += "?";
-      }
-      errors.push_back(msg);
-      continue;
-    }
-    Node node;
-    node.name = b.name;
-    node.loc = b.loc;
-    node.feedback = b.feedback;
-    node.block = BlockRegistry::instance().create(b.type);
-    bool ok = true;
-    for (const PropertySetting& s : b.properties) {
-      const PropertySpec* ps = node.block->findProperty(s.name);
-      if (!ps) {
-        std::string known;
-        for (const auto& p : node.block->propertySpecs()) known += (known.empty() ? "" : ", ") + p.name();
-        errors.push_back(s.loc.str() + ": " + describe(b) + ": unknown property '" + s.name +
-                         "' (known: " + (known.empty() ? "none" : known) + ")");
-        ok = false;
-        continue;
-      }
-      try {
-        PropertyValue v = ps->parse(s.text);
-        if (ps->isPath()) v = resolvePath(std::get<std::string>(v), spec.base_dir);
-        node.block->setProperty(s.name, v);
-      } catch (const std::exception& e) {
-        errors.push_back(s.loc.str() + ": " + describe(b) + ": property '" + s.name + "': " + e.what());
-        ok = false;
-      }
-    }
-    if (!ok) continue;
-    if (b.feedback) {
-      node.block->addOutput("feedback_trace", PortType::of<FeedbackTrace>(),
-                            "every (value, score) of the feedback sweep and the chosen value");
-    }
-    try {
-      node.block->configure();
-    } catch (const NetError& e) {
-      for (const auto& inner : e.errors()) errors.push_back(at + describe(b) + ": " + inner);
-      continue;
-    } catch (const std::exception& e) {
-      errors.push_back(at + describe(b) + ": " + e.what());
-      continue;
-    }
-    node.input_links.resize(node.block->inputs().size());
-    net->nodes_.push_back(std::move(node));
-  }
-
-  // Links, type-checked. A block that failed above is skipped silently: its error is reported.
-  for (const LinkSpec& l : spec.links) {
-    const std::string at = l.loc.str() + ": link " + l.from_block + "." + l.from_port + " -> " +
-                           l.to_block + "." + l.to_port + ": ";
-    int from = net->findNode(l.from_block), to = net->findNode(l.to_block);
-    bool from_known = from >= 0 || names.count(l.from_block), to_known = to >= 0 || names.count(l.to_block);
-    if (!from_known) errors.push_back(at + "no block named '" + l.from_block + "'");
-    if (!to_known) errors.push_back(at + "no block named '" + l.to_block + "'");
-    if (from < 0 || to < 0) continue;
-    const Block& src = *net->nodes_[from].block;
-    const Block& dst = *net->nodes_[to].block;
-    int out_port = src.outputIndex(l.from_port);
-    int in_port = dst.inputIndex(l.to_port);
-    if (out_port < 0) {
-      errors.push_back(at + "block '" + l.from_block + "' has no output port '" + l.from_port +
-                       "' (outputs: " + portList(src.outputs()) + ")");
-    }
-    if (in_port < 0) {
-      errors.push_back(at + "block '" + l.to_block + "' has no input port '" + l.to_port +
-                       "' (inputs: " + portList(dst.inputs()) + ")");
-    }
-    if (out_port < 0 || in_port < 0) continue;
-    const std::string& out_type = src.outputs()[out_port].type->name;
-    const std::string& in_type = dst.inputs()[in_port].type->name;
-    if (out_type != in_type) {
-      errors.push_back(at + "type mismatch: output is " + out_type + ", input is " + in_type);
-      continue;
-    }
-    Endpoint& slot = net->nodes_[to].input_links[in_port];
-    if (slot.valid()) {
-      errors.push_back(at + "input " + l.to_block + "." + l.to_port + " is already linked from " +
-                       net->nodes_[slot.node].name + "." + net->nodes_[slot.node].block->outputs()[slot.port].name);
-      continue;
-    }
-    slot = Endpoint{from, out_port};
-    auto& down = net->nodes_[from].downstream;
-    if (std::find(down.begin(), down.end(), to) == down.end()) down.push_back(to);
-  }
-
-  // Event flow needs an acyclic net (feedback is declared on a block, never as a link).
-  std::vector<int> indegree(net->nodes_.size(), 0);
-  for (const Node& n : net->nodes_) {
-    for (int d : n.downstream) ++indegree[d];
-  }
-  std::vector<int> ready;
-  for (size_t i = 0; i < indegree.size(); ++i) {
-    if (indegree[i] == 0) ready.push_back(static_cast<int>(i));
-  }
-  while (!ready.empty()) {
-    int n = ready.front();
-    ready.erase(ready.begin());
-    net->order_.push_back(n);
-    for (int d : net->nodes_[n].downstream) {
-      if (--indegree[d] == 0) ready.push_back(d);
-    }
-  }
-  if (net->order_.size() != net->nodes_.size()) {
-    std::string cycle;
-    for (size_t i = 0; i < indegree.size(); ++i) {
-      if (indegree[i] > 0) cycle += (cycle.empty() ? "" : ", ") + net->nodes_[i].name;
-    }
-    errors.push_back(spec.origin + ": the links form a cycle through blocks " + cycle +
-                     " (nets are acyclic; use feedback to tune a block from a downstream score)");
-  }
-
-  // Feedback declarations.
-  if (errors.empty()) {
-    for (size_t i = 0; i < net->nodes_.size(); ++i) {
-      const Node& n = net->nodes_[i];
-      if (!n.feedback) continue;
-      const FeedbackSpec& f = *n.feedback;
-      const std::string at = f.loc.str() + ": block '" + n.name + "': feedback: ";
-      const PropertySpec* ps = n.block->findProperty(f.property);
-      if (!ps) {
-        errors.push_back(at + "unknown property '" + f.property + "'");
-      } else if (!ps->numeric()) {
-        errors.push_back(at + "property '" + f.property + "' is " + kindName(ps->kind()) + ", not numeric");
-      } else {
-        for (double v : f.values) {
-          try {
-            ps->fromNumber(v);
-          } catch (const PropertyError& e) {
-            errors.push_back(at + "candidate for '" + f.property + "': " + e.what());
-            break;
-          }
-        }
-      }
-      int score = net->findNode(f.score_block);
-      if (score < 0) {
-        errors.push_back(at + "score block '" + f.score_block + "' does not exist");
-        continue;
-      }
-      const PortSpec* port = net->nodes_[score].block->findOutput(f.score_port);
-      if (!port) {
-        errors.push_back(at + "score block '" + f.score_block + "' has no output port '" + f.score_port + "'");
-        continue;
-      }
-      if (port->type->name != "std_msgs/Float64") {
-        errors.push_back(at + "score port " + f.score_block + "." + f.score_port + " is " + port->type->name +
-                         ", not std_msgs/Float64");
-        continue;
-      }
-      auto down = net->descendants(static_cast<int>(i));
-      if (score != static_cast<int>(i) && std::find(down.begin(), down.end(), score) == down.end()) {
-        errors.push_back(at + "score port " + f.score_block + "." + f.score_port + " is not downstream of block '" +
-                         n.name + "'");
-      }
-    }
-  }
-
-  if (!errors.empty()) throw NetError(errors);
-  return net;
+  NetBuilder builder(spec);
+  builder.createBlocks();
+  builder.linkBlocks();
+  builder.orderBlocks();
+  builder.checkFeedback();
+  return builder.finish();
 }
 
 std::unique_ptr<Net> Net::loadFile(const std::string& path) { return build(parseNetFile(path)); }

@@ -1,8 +1,11 @@
 #include "imagenets/property.h"
 
 #include <cmath>
+#include <regex>
 #include <sstream>
 
+#include <boost/filesystem.hpp>
+#include <ros/package.h>
 #include <yaml-cpp/yaml.h>
 
 namespace imagenets {
@@ -39,6 +42,11 @@ PropertySpec& PropertySpec::path() {
   return *this;
 }
 
+PropertySpec& PropertySpec::fixedAtLoad() {
+  fixed_at_load_ = true;
+  return *this;
+}
+
 namespace {
 
 std::string quote(const std::string& s) { return "'" + s + "'"; }
@@ -67,9 +75,25 @@ bool parseInt(const std::string& s, int& out) {
 
 }  // namespace
 
-PropertyValue PropertySpec::parse(const std::string& raw) const {
-  // Strings are taken as written (a sub-net's inline YAML is a string, not a map to parse).
-  if (kind_ == PropertyKind::String || kind_ == PropertyKind::Enum) return validate(raw);
+std::string resolvePath(const std::string& path, const std::string& base_dir) {
+  std::string out = path;
+  static const std::regex find_re(R"(\$\(find ([A-Za-z0-9_]+)\))");
+  std::smatch m;
+  while (std::regex_search(out, m, find_re)) {
+    std::string pkg_path = ros::package::getPath(m[1].str());
+    if (pkg_path.empty()) throw PropertyError("$(find " + m[1].str() + "): ROS package not found");
+    out = m.prefix().str() + pkg_path + m.suffix().str();
+  }
+  if (out.empty() || out[0] == '/' || base_dir.empty()) return out;
+  return (boost::filesystem::path(base_dir) / out).lexically_normal().string();
+}
+
+PropertyValue PropertySpec::parse(const std::string& raw, const std::string& base_dir) const {
+  // Strings are taken as written (a sub-net's inline YAML is a string, not a map to parse); a path
+  // has `$(find pkg)` expanded and, when relative, is taken relative to base_dir.
+  if (kind_ == PropertyKind::String || kind_ == PropertyKind::Enum) {
+    return validate(is_path_ ? resolvePath(raw, base_dir) : raw);
+  }
   std::string text = raw;
   YAML::Node node;
   try {

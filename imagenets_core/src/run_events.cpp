@@ -26,6 +26,20 @@ const char* eventName(RunEventKind kind) {
   return "?";
 }
 
+void BlockStats::record(BlockStatus new_status, const std::string& new_message, double ms, bool processed) {
+  status = new_status;
+  message = new_message;
+  if (status == BlockStatus::Failed) {
+    last_error = message;
+    if (processed) ++failures;
+  }
+  if (processed) {
+    ++runs;
+    last_ms = ms;
+    mean_ms += (ms - mean_ms) / static_cast<double>(runs);
+  }
+}
+
 std::string describe(const RunEvent& e) {
   char number[64];
   std::string text = e.block.empty() ? std::string() : e.block + ": ";

@@ -158,9 +158,9 @@ void resetCalls() {
 }  // namespace test
 }  // namespace imagenets
 
-IMAGENETS_REGISTER_BLOCK(imagenets::test::Constant, "test/Constant", "test", "Outputs a number");
-IMAGENETS_REGISTER_BLOCK(imagenets::test::Scale, "test/Scale", "test", "in * gain + offset");
-IMAGENETS_REGISTER_BLOCK(imagenets::test::Add, "test/Add", "test", "a + b");
-IMAGENETS_REGISTER_BLOCK(imagenets::test::Parabola, "test/Parabola", "test", "Score with a known peak");
-IMAGENETS_REGISTER_BLOCK(imagenets::test::Counter, "test/Counter", "test", "Counts its runs");
-IMAGENETS_REGISTER_BLOCK(imagenets::test::Barrier, "test/Barrier", "test", "Meets other barriers");
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Constant, "test/Constant", "test", "Outputs a number");
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Scale, "test/Scale", "test", "in * gain + offset");
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Add, "test/Add", "test", "a + b");
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Parabola, "test/Parabola", "test", "Score with a known peak");
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Counter, "test/Counter", "test", "Counts its runs");
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Barrier, "test/Barrier", "test", "Meets other barriers");

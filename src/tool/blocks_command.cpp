@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "command.h"
+#include "imagenets/nodelet_plugins.h"
 #include "imagenets/registry.h"
 
 namespace imagenets {
@@ -27,7 +28,7 @@ int run(const Args& args) {
     else throw UsageError("unknown argument '" + args[i] + "'");
   }
   if (plugin_xml) {
-    std::cout << BlockRegistry::instance().pluginXml();
+    std::cout << nodeletPluginXml();
     return 0;
   }
   std::string current;

@@ -19,6 +19,7 @@
 #include <tf2_eigen/tf2_eigen.h>
 
 #include "imagenets/executor.h"
+#include "imagenets/blocks/block_harness.h"
 #include "imagenets/registry.h"
 
 using namespace imagenets;
@@ -129,15 +130,12 @@ links:
 blocks:
   get: {type: imagenets/WorldModelGet, properties: {name: cup}}
 )");
-  auto set = BlockRegistry::instance().create("imagenets/WorldModelSet");
-  set->setProperty("name", std::string("cup"));
+  imagenets::blocks::BlockHarness set("imagenets/WorldModelSet");
   auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
   pose->pose.position.x = 0.7;
   pose->pose.position.z = 0.8;
   pose->pose.orientation.w = 1.0;
-  std::vector<Value> in{PortType::of<geometry_msgs::PoseStamped>().wrap(boost::shared_ptr<const geometry_msgs::PoseStamped>(pose))};
-  Context ctx("set", set->inputs(), set->outputs(), in, set->propertyValues());
-  set->process(ctx);
+  set.set("name", std::string("cup")).input("pose", pose).run();
   ASSERT_TRUE(wm->run().ok());
   const auto got = wm->output<geometry_msgs::PoseStamped>("get.pose");
   ASSERT_TRUE(got);
@@ -164,19 +162,13 @@ links:
 
   // A goal the server rejects: joint 1 at 169 deg is inside the property's check only if the
   // description allows it; send an explicit out-of-limit state instead.
-  auto arm = BlockRegistry::instance().create("imagenets/MoveArm");
+  imagenets::blocks::BlockHarness arm("imagenets/MoveArm");
   auto target = boost::make_shared<sensor_msgs::JointState>();
   target->name = {"arm_joint_2"};
   target->position = {3.0};
-  std::vector<Value> in{PortType::of<sensor_msgs::JointState>().wrap(boost::shared_ptr<const sensor_msgs::JointState>(target))};
-  Context ctx("arm", arm->inputs(), arm->outputs(), in, arm->propertyValues());
-  try {
-    arm->process(ctx);
-    FAIL() << "expected a rejection";
-  } catch (const BlockError& e) {
-    EXPECT_NE(std::string(e.what()).find("REJECTED"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("arm_joint_2"), std::string::npos) << e.what();
-  }
+  const std::string error = arm.input("configuration", target).runError();
+  EXPECT_NE(error.find("REJECTED"), std::string::npos) << error;
+  EXPECT_NE(error.find("arm_joint_2"), std::string::npos) << error;
 }
 
 }  // namespace

@@ -15,7 +15,7 @@
 #include <std_msgs/Bool.h>
 #include <std_msgs/Float64.h>
 
-#include "imagenets/registry.h"
+#include "imagenets/register_block.h"
 
 namespace imagenets {
 namespace test {

@@ -12,6 +12,8 @@
 //     void process(imagenets::Context& ctx) override { ... }
 //   };
 //   IMAGENETS_REGISTER_BLOCK(Threshold, "imagenets/Threshold", "segmentation", "Fixed threshold");
+//
+// Every host runs a block the same way: invokeBlock() (block_invocation.h).
 #pragma once
 
 #include <functional>
@@ -33,6 +35,8 @@ struct PortSpec {
   std::string doc;
   bool optional = false;  // an optional input may stay empty; the block still runs
 };
+// "name [type], ..." (or "none"), for messages.
+std::string portList(const std::vector<PortSpec>& ports);
 
 // What a block sees during one process() call: its inputs, a snapshot of its properties, and
 // where its outputs go. Several contexts of one block may be alive at once (feedback trials run in
@@ -123,6 +127,11 @@ class Block {
   const std::vector<PortSpec>& inputs() const { return inputs_; }
   const std::vector<PortSpec>& outputs() const { return outputs_; }
   const std::vector<PropertySpec>& propertySpecs() const { return property_specs_; }
+  // An output the engine adds to a block for a feature of the net it sits in (the feedback trace):
+  // called before configure(); the engine, not the block, sets it.
+  PortSpec& attachOutput(const std::string& name, const PortType& type, const std::string& doc) {
+    return addOutput(name, type, doc);
+  }
   const PortSpec* findInput(const std::string& name) const;
   const PortSpec* findOutput(const std::string& name) const;
   const PropertySpec* findProperty(const std::string& name) const;
@@ -139,8 +148,6 @@ class Block {
   void setInfo(const BlockInfo* info) { info_ = info; }
 
  protected:
-  friend class Net;  // adds the `feedback_trace` output to a block that gets feedback
-
   template <class M>
   PortSpec& addInput(const std::string& name, const std::string& doc) {
     return addInput(name, PortType::of<M>(), doc);

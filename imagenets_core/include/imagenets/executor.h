@@ -105,7 +105,9 @@ class Executor {
   // region between the node and its score; keeps the best trial's outputs in `store`.
   void runFeedback(int node, Store& store, RunReport& report);
   double runTrial(int node, double candidate, const Store& base, Store& trial_store);
-  std::vector<Value> gatherInputs(int node, const Store& store, std::string& missing) const;
+  std::vector<Value> gatherInputs(int node, const Store& store) const;
+  // "input 'x' has no value (block 'b' produced none)" / "(not linked, not set)".
+  std::string explainMissing(int node, int input) const;
   BlockStats statsOf(int node) const;
   // Records a block's status; `counted` adds a process() call to its timings. Returns the stats.
   BlockStats record(int node, BlockStatus status, const std::string& message, double ms, bool counted);

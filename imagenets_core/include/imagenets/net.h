@@ -80,9 +80,6 @@ struct NetSpec {
 NetSpec parseNetFile(const std::string& path);
 NetSpec parseNetText(const std::string& yaml, const std::string& origin, const std::string& base_dir);
 
-// Resolves `$(find pkg)` and relative paths (against base_dir).
-std::string resolvePath(const std::string& path, const std::string& base_dir);
-
 // The net being built on this thread: lets a block's configure() resolve files relative to the
 // net file and see the chain of including files (sub-nets use it to refuse self-inclusion).
 class LoadContext {
@@ -116,8 +113,8 @@ class Net {
     std::optional<FeedbackSpec> feedback;
   };
 
-  // Builds and validates; throws NetError listing every problem found. Nothing half-built
-  // survives a failed load.
+  // Builds and validates (NetBuilder's steps); throws NetError listing every problem found.
+  // Nothing half-built survives a failed load.
   static std::unique_ptr<Net> build(const NetSpec& spec);
   static std::unique_ptr<Net> loadFile(const std::string& path);
 
@@ -135,6 +132,7 @@ class Net {
   std::vector<int> descendants(int from) const;
 
  private:
+  friend class NetBuilder;  // the steps of build() fill the net
   std::string origin_, base_dir_;
   std::vector<Node> nodes_;
   std::vector<int> order_;

@@ -30,6 +30,7 @@ class PropertySpec {
   PropertySpec& range(double min, double max);
   PropertySpec& choices(std::vector<std::string> allowed);  // turns a string into an enumeration
   PropertySpec& path();  // a file path: relative values resolve against the net file's folder
+  PropertySpec& fixedAtLoad();  // takes effect at load only: a live change is refused
 
   const std::string& name() const { return name_; }
   PropertyKind kind() const { return kind_; }
@@ -39,10 +40,14 @@ class PropertySpec {
   const std::optional<double>& max() const { return max_; }
   const std::vector<std::string>& allowedChoices() const { return choices_; }
   bool isPath() const { return is_path_; }
+  bool isFixedAtLoad() const { return fixed_at_load_; }
   bool numeric() const { return kind_ == PropertyKind::Int || kind_ == PropertyKind::Double; }
 
-  // Parses text (a YAML scalar or flow sequence, "72", "true", "[1, 2]") into a valid value.
-  PropertyValue parse(const std::string& text) const;
+  // The one way a written value (net file, command line, ROS parameter, dynamic_reconfigure)
+  // becomes a property value: parses text (a YAML scalar or flow sequence, "72", "true",
+  // "[1, 2]"; a string as written) into a valid value; a path gets `$(find pkg)` expanded and,
+  // when relative, is taken relative to base_dir (empty: the working directory).
+  PropertyValue parse(const std::string& text, const std::string& base_dir = "") const;
   // Checks type, range and choices of a value; throws PropertyError naming the problem.
   PropertyValue validate(const PropertyValue& value) const;
   // Numeric properties also accept a double (feedback sweeps them); ints are rounded.
@@ -56,7 +61,11 @@ class PropertySpec {
   std::optional<double> min_, max_;
   std::vector<std::string> choices_;
   bool is_path_ = false;
+  bool fixed_at_load_ = false;
 };
+
+// Resolves `$(find pkg)` and relative paths (against base_dir); throws PropertyError.
+std::string resolvePath(const std::string& path, const std::string& base_dir);
 
 std::string toString(const PropertyValue& value);
 double toNumber(const PropertyValue& value);  // bool, int, double; throws otherwise

@@ -1,6 +1,7 @@
 // The block registry: every block type by name ("imagenets/Threshold"), with its category and
-// one-line doc. IMAGENETS_REGISTER_BLOCK is the one line a block's .cpp adds to be found by nets,
-// by the `imagenets blocks` browser and by the nodelet host.
+// one-line doc, found by nets, the `imagenets blocks` browser, the Designer and the nodelet host.
+// A block library registers each block with IMAGENETS_REGISTER_BLOCK (register_block.h, which
+// also exports it as a nodelet); code without nodelets uses IMAGENETS_REGISTER_BLOCK_TYPE here.
 #pragma once
 
 #include <functional>
@@ -9,10 +10,7 @@
 #include <typeinfo>
 #include <vector>
 
-#include <pluginlib/class_list_macros.hpp>
-
 #include "imagenets/block.h"
-#include "imagenets/block_nodelet.h"
 
 namespace imagenets {
 
@@ -39,10 +37,11 @@ class BlockRegistry {
   std::vector<const BlockInfo*> all() const;  // sorted by category, then type
   // Creates a block with its info set; throws std::runtime_error for an unknown type.
   std::unique_ptr<Block> create(const std::string& type) const;
-  // The nodelet plug-in description (imagenets_plugins.xml): one <library> per installed library
-  // that registers blocks (libimagenets_core, libimagenets_blocks; test code and programs are
-  // left out). Printed by `imagenets blocks --plugin-xml`; a test checks the committed file.
-  std::string pluginXml() const;
+  // A type the registry does not know may live in a library not loaded yet (a nodelet manager
+  // loads only the library of the nodelet it was asked for): `loader` loads more block libraries.
+  // Set by the nodelet layer; findOrLoad() calls it once, on the first unknown type.
+  void setLibraryLoader(std::function<void()> loader);
+  const BlockInfo* findOrLoad(const std::string& type);
   // Known types closest to an unknown name (edit distance), best first.
   std::vector<std::string> suggest(const std::string& type, size_t max = 3) const;
   // Type names claimed by two different classes (the first one wins); should be empty.
@@ -51,6 +50,8 @@ class BlockRegistry {
  private:
   std::vector<std::unique_ptr<BlockInfo>> infos_;
   std::vector<std::string> conflicts_;
+  std::function<void()> loader_;
+  bool loaded_ = false;
 };
 
 namespace detail {
@@ -64,16 +65,13 @@ struct BlockRegistration {
 #define IMAGENETS_DETAIL_CAT2(a, b) a##b
 #define IMAGENETS_DETAIL_CAT(a, b) IMAGENETS_DETAIL_CAT2(a, b)
 
-// Registers Class (default-constructible, derived from imagenets::Block) under TypeName, and
-// exports it as the nodelet plug-in `imagenets::BlockNodelet<Class>` (the plug-in XML, generated
-// by `imagenets blocks --plugin-xml`, names it TypeName). Use it at namespace scope, spelling
-// Class the same way everywhere (the plug-in type is the spelling, character for character).
-#define IMAGENETS_REGISTER_BLOCK(Class, TypeName, Category, Doc)                                \
+// Registers Class (default-constructible, derived from imagenets::Block) under TypeName. Use it at
+// namespace scope.
+#define IMAGENETS_REGISTER_BLOCK_TYPE(Class, TypeName, Category, Doc)                           \
   static ::imagenets::detail::BlockRegistration IMAGENETS_DETAIL_CAT(imagenets_block_reg_,      \
                                                                      __LINE__)(                 \
       ::imagenets::BlockInfo{TypeName, #Class, Category, Doc,                                    \
                              []() -> std::unique_ptr<::imagenets::Block> {                       \
                                return std::make_unique<Class>();                                 \
                              },                                                                  \
-                             &typeid(Class), std::string()});                                    \
-  PLUGINLIB_EXPORT_CLASS(imagenets::BlockNodelet<Class>, nodelet::Nodelet)
+                             &typeid(Class), std::string()})

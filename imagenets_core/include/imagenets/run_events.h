@@ -20,14 +20,19 @@ namespace imagenets {
 enum class BlockStatus { Pending, Ok, Failed, NotRun };
 const char* statusName(BlockStatus status);
 
-// One stats type for every host: what the last invocation of a block did.
+// One stats type for every host (executor, nodelet host, test harness): what the invocations of
+// a block did.
 struct BlockStats {
   BlockStatus status = BlockStatus::Pending;
   std::string message;     // why it failed or did not run
-  size_t runs = 0;         // completed process() calls (feedback trials included)
+  size_t runs = 0;         // completed process() calls, failed ones included (feedback trials too)
+  size_t failures = 0;     // process() calls that failed
   double last_ms = 0.0;
   double mean_ms = 0.0;
-  std::string last_error;  // the last exception text, kept after later successes
+  std::string last_error;  // the last failure's message, kept after later successes
+
+  // Records one invocation; `processed`: process() was called (it counts as a run, timed).
+  void record(BlockStatus new_status, const std::string& new_message, double ms, bool processed);
 };
 
 enum class RunEventKind {

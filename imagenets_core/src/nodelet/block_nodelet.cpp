@@ -12,44 +12,20 @@
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
-#include "imagenets/net.h"
+#include "imagenets/block_invocation.h"
 #include "imagenets/executor.h"
+#include "imagenets/net.h"
 #include "imagenets/registry.h"
-#include "imagenets/sub_net_access.h"
+#include "imagenets/inner_net.h"
+#include "host_options.h"
 #include "input_pairing.h"
 #include "param_text.h"
 #include "reconfigure.h"
 
 namespace imagenets {
 
-// Properties of the host rather than of the block, declared the same way so they load, check and
-// reconfigure like block properties. A block property of the same name hides the host's.
-std::vector<PropertySpec> hostPropertySpecs() {
-  std::vector<PropertySpec> specs;
-  specs.emplace_back("pairing", PropertyKind::String, std::string("exact"),
-                     "how several inputs are paired by header stamp: exact or approximate (within pairing_slop)");
-  specs.back().choices({"exact", "approximate"});
-  specs.emplace_back("pairing_slop", PropertyKind::Double, 0.05,
-                     "largest stamp difference (s) paired in approximate mode");
-  specs.back().range(0.0, 3600.0);
-  specs.emplace_back("queue_size", PropertyKind::Int, 5,
-                     "messages kept per input (subscriber queue and pairing); load time only");
-  specs.back().range(1, 1000);
-  specs.emplace_back("latch", PropertyKind::Bool, false,
-                     "latch the outputs (late subscribers get the last value; costs one serialisation per "
-                     "message); outputs of a source run `once` are always latched; load time only");
-  specs.emplace_back("source_mode", PropertyKind::String, std::string("timer"),
-                     "a source (a block without required or linked inputs) runs: once (at load), timer (every "
-                     "1/source_rate s) or "
-                     "trigger (on ~run only)");
-  specs.back().choices({"once", "timer", "trigger"});
-  specs.emplace_back("source_rate", PropertyKind::Double, 1.0, "runs per second of a source in timer mode");
-  specs.back().range(0.001, 1000.0);
-  return specs;
-}
-
-// A sub-net may use any block, but a manager loads only the library of the nodelet it was asked
-// for: load every library that declares imagenets nodelets (once per process; kept loaded).
+// A manager loads only the library of the nodelet it was asked for: load every library that
+// declares imagenets nodelets (once per process; kept loaded).
 void loadBlockLibraries() {
   static std::mutex mutex;
   static pluginlib::ClassLoader<nodelet::Nodelet>* loader = nullptr;  // never unloaded
@@ -75,19 +51,8 @@ class BlockHost {
     const BlockInfo* info = BlockRegistry::instance().findByTypeId(typeid(*block_));
     if (info) block_->setInfo(info);
     type_ = info ? info->type : std::string("?");
-    inner_ = dynamic_cast<const SubNetAccess*>(block_.get());
-    std::vector<PropertySpec> host = hostPropertySpecs();
-    if (inner_) {
-      host.emplace_back("publish_internal_ports", PropertyKind::Bool, false,
-                        "publish every output port of the inner net as ~internal/<block>/<port>, only while "
-                        "subscribed");
-    }
-    for (PropertySpec& spec : host) {
-      if (!block_->findProperty(spec.name())) {
-        host_values_[spec.name()] = spec.defaultValue();
-        host_specs_.push_back(std::move(spec));
-      }
-    }
+    inner_ = dynamic_cast<const InnerNet*>(block_.get());
+    host_ = std::make_unique<HostOptions>(*block_, inner_ != nullptr);
   }
 
   // Loads properties, configures the block and opens its topics and services. Throws (after
@@ -96,7 +61,6 @@ class BlockHost {
     std::vector<std::string> errors = loadParameters();
     if (errors.empty()) {
       try {
-        if (inner_) loadBlockLibraries();
         block_->configure();
       } catch (const std::exception& e) {
         errors.push_back(e.what());
@@ -118,11 +82,11 @@ class BlockHost {
       required.push_back(!p.optional);
       linked = linked || !p.optional || pnh_.resolveName("in/" + p.name) != pnh_.getNamespace() + "/in/" + p.name;
     }
-    pairing_ = std::make_unique<InputPairing>(required, pairingOptions(), !linked);
+    pairing_ = std::make_unique<InputPairing>(required, host_->pairing(), !linked);
     cached_inputs_.resize(block_->inputs().size());
 
-    const bool latch = hostBool("latch") || (pairing_->isSource() && hostString("source_mode") == "once");
-    const uint32_t queue = static_cast<uint32_t>(hostInt("queue_size"));
+    const bool latch = host_->latch() || (pairing_->isSource() && host_->sourceMode() == "once");
+    const uint32_t queue = host_->queueSize();
     for (const PortSpec& p : block_->outputs()) publishers_.push_back(p.type->advertise(pnh_, "out/" + p.name, queue, latch));
     for (size_t i = 0; i < block_->inputs().size(); ++i) {
       const PortSpec& p = block_->inputs()[i];
@@ -150,30 +114,13 @@ class BlockHost {
   const std::vector<const PropertySpec*>& allSpecs() {
     if (specs_.empty()) {
       for (const PropertySpec& s : block_->propertySpecs()) specs_.push_back(&s);
-      for (const PropertySpec& s : host_specs_) specs_.push_back(&s);
+      for (const PropertySpec& s : host_->specs()) specs_.push_back(&s);
     }
     return specs_;
   }
-  const PropertySpec* findHostSpec(const std::string& name) const {
-    for (const PropertySpec& s : host_specs_) {
-      if (s.name() == name) return &s;
-    }
-    return nullptr;
-  }
-  bool hostBool(const std::string& n) const { return std::get<bool>(host_values_.at(n)); }
-  int hostInt(const std::string& n) const { return std::get<int>(host_values_.at(n)); }
-  double hostDouble(const std::string& n) const { return std::get<double>(host_values_.at(n)); }
-  std::string hostString(const std::string& n) const { return std::get<std::string>(host_values_.at(n)); }
-  PairingOptions pairingOptions() const {
-    PairingOptions o;
-    o.approximate = hostString("pairing") == "approximate";
-    o.slop = hostDouble("pairing_slop");
-    o.history = static_cast<size_t>(hostInt("queue_size"));
-    return o;
-  }
   PropertyValues currentValues() const {
     PropertyValues values = block_->propertyValues();
-    for (const auto& kv : host_values_) values[kv.first] = kv.second;
+    for (const auto& kv : host_->values()) values[kv.first] = kv.second;
     return values;
   }
 
@@ -181,20 +128,18 @@ class BlockHost {
   void setValue(const std::string& name, const PropertyValue& value) {
     if (block_->findProperty(name)) {
       block_->setProperty(name, value);
-    } else if (const PropertySpec* spec = findHostSpec(name)) {
-      host_values_[name] = spec->validate(value);
     } else {
-      throw PropertyError("unknown property '" + name + "'");
+      host_->set(name, value);
     }
   }
   const PropertySpec* findSpec(const std::string& name) const {
     if (const PropertySpec* s = block_->findProperty(name)) return s;
-    return findHostSpec(name);
+    return host_->find(name);
   }
   std::string knownNames() const {
     std::string known;
     for (const auto& s : block_->propertySpecs()) known += (known.empty() ? "" : ", ") + s.name();
-    for (const auto& s : host_specs_) known += (known.empty() ? "" : ", ") + s.name();
+    for (const auto& s : host_->specs()) known += (known.empty() ? "" : ", ") + s.name();
     return known;
   }
 
@@ -220,10 +165,8 @@ class BlockHost {
       XmlRpc::XmlRpcValue raw;
       if (!pnh_.getParam(name, raw)) continue;
       try {
-        PropertyValue v = propertyFromParam(*spec, raw);
         // Relative paths resolve against the working directory; `$(find pkg)/...` works too.
-        if (spec->isPath()) v = resolvePath(std::get<std::string>(v), "");
-        setValue(name, v);
+        setValue(name, spec->parse(paramText(raw)));
       } catch (const std::exception& e) {
         errors.push_back("parameter '" + prefix + name + "': property '" + name + "': " + e.what());
       }
@@ -246,36 +189,24 @@ class BlockHost {
   // publishes what it outputs. Returns the error, empty on success.
   std::string runLocked() {
     if (pairing_->isSource()) cached_inputs_ = pairing_->latest();
-    Context ctx(name_, block_->inputs(), block_->outputs(), cached_inputs_, block_->propertyValues());
-    // What runs inside the block (a sub-net) reports on ~status while it runs.
-    ctx.setRunChannel(RunChannel{[this](const RunEvent& e) { onInnerEvent(e); }, {}});
-    status_ = "running";
+    running_ = true;  // ~status says "running" while inner progress comes in
     progress_.clear();
-    std::string error;
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      block_->process(ctx);
-    } catch (const std::exception& e) {
-      error = describe() + ": " + e.what();
-    }
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    ++runs_;
-    total_ms_ += ms;
-    last_ms_ = ms;
-    status_ = error.empty() ? "ok" : "failed";
-    if (!error.empty()) {
-      ++failures_;
-      last_error_ = error;
-      ROS_ERROR_STREAM(error);
-    } else {
+    // What runs inside the block (a sub-net) reports on ~status while it runs.
+    BlockInvocation run = invokeBlock(*block_, name_, cached_inputs_, block_->propertyValues(),
+                                      RunChannel{[this](const RunEvent& e) { onInnerEvent(e); }, {}});
+    running_ = false;
+    stats_.record(run.status, run.message, run.ms, run.processed);
+    if (run.status == BlockStatus::Ok) {
       for (size_t i = 0; i < publishers_.size(); ++i) {
-        const Value& out = ctx.outputs()[i];
+        const Value& out = run.outputs[i];
         if (out) out.type->publish(publishers_[i], out);  // the pointer itself: zero-copy in-manager
       }
+    } else {
+      ROS_ERROR_STREAM(run.message);
     }
     publishInternalPorts();
     publishStatus();
-    return error;
+    return run.status == BlockStatus::Ok ? std::string() : run.message;
   }
 
   // An event from inside the block, on the thread running it (mutex_ is held by runLocked).
@@ -290,8 +221,8 @@ class BlockHost {
   // publish_internal_ports: every inner output port becomes a topic; a value is published only
   // while someone subscribes, and only when it is new (the inner net re-ran that block).
   void publishInternalPorts() {
-    if (!inner_ || !hostBool("publish_internal_ports")) return;
-    const Executor* inner = inner_->subExecutor();
+    if (!inner_ || !host_->publishInternalPorts()) return;
+    const Executor* inner = inner_->innerExecutor();
     if (!inner) return;
     if (internal_.empty()) {
       for (const auto& node : inner->net().nodes()) {
@@ -326,13 +257,13 @@ class BlockHost {
   void startSource() {
     timer_.stop();
     if (!pairing_->isSource()) return;
-    const std::string mode = hostString("source_mode");
+    const std::string mode = host_->sourceMode();
     auto tick = [this](const ros::TimerEvent&) {
       std::lock_guard<std::mutex> lock(mutex_);
       runLocked();
     };
     if (mode == "timer") {
-      timer_ = pnh_.createTimer(ros::Duration(1.0 / hostDouble("source_rate")), tick);
+      timer_ = pnh_.createTimer(ros::Duration(1.0 / host_->sourceRate()), tick);
     } else if (mode == "once" && !ran_once_) {
       ran_once_ = true;
       // After onInit returns, from the nodelet's own queue (the outputs are latched).
@@ -355,11 +286,10 @@ class BlockHost {
         continue;
       }
       try {
-        PropertyValue v = propertyFromRequest(*spec, text);
-        if (spec->isPath()) v = resolvePath(std::get<std::string>(v), "");
+        PropertyValue v = spec->parse(text);
         auto old = before.find(name);
         if (old != before.end() && old->second == v) continue;
-        if (!block_->findProperty(name) && (name == "latch" || name == "queue_size")) {
+        if (spec->isFixedAtLoad()) {
           throw PropertyError("takes effect at load only (the topics are open); reload the nodelet to change it");
         }
         (block_->findProperty(name) ? block_changes : host_changes)[name] = v;
@@ -368,9 +298,9 @@ class BlockHost {
       }
     }
     if (!block_changes.empty() && !reconfigureBlock(block_changes)) block_changes.clear();
-    for (const auto& [name, v] : host_changes) host_values_[name] = v;
+    for (const auto& [name, v] : host_changes) host_->set(name, v);
     if (!host_changes.empty()) {
-      pairing_->setOptions(pairingOptions());
+      pairing_->setOptions(host_->pairing());
       startSource();
     }
     for (const auto* changes : {&block_changes, &host_changes}) {
@@ -394,7 +324,6 @@ class BlockHost {
         auto changed = changes.find(name);
         fresh->setProperty(name, changed != changes.end() ? changed->second : v);
       }
-      if (inner_) loadBlockLibraries();
       fresh->configure();
     } catch (const std::exception& e) {
       ROS_ERROR_STREAM(describe() << ": set_parameters: change refused: " << e.what());
@@ -413,7 +342,7 @@ class BlockHost {
       return false;
     }
     block_ = std::move(fresh);
-    inner_ = dynamic_cast<const SubNetAccess*>(block_.get());
+    inner_ = dynamic_cast<const InnerNet*>(block_.get());
     internal_.clear();  // inner ports are advertised again for the new inner net
     specs_.clear();
     allSpecs();
@@ -427,12 +356,13 @@ class BlockHost {
     s->header.stamp = ros::Time::now();
     s->block = name_;
     s->type = type_;
-    s->runs = runs_;
-    s->failures = failures_;
-    s->last_ms = last_ms_;
-    s->mean_ms = runs_ ? total_ms_ / static_cast<double>(runs_) : 0.0;
-    s->last_error = last_error_;
-    s->status = status_;
+    s->runs = stats_.runs;
+    s->failures = stats_.failures;
+    s->last_ms = stats_.last_ms;
+    s->mean_ms = stats_.mean_ms;
+    s->last_error = stats_.last_error;
+    s->status = running_ ? "running" : statusName(stats_.status);
+    s->message = stats_.message;
     s->progress = progress_;
     status_pub_.publish(s);
   }
@@ -445,12 +375,11 @@ class BlockHost {
 
   std::function<std::unique_ptr<Block>()> factory_;
   std::unique_ptr<Block> block_;
-  const SubNetAccess* inner_ = nullptr;  // set for a block running a net inside
+  const InnerNet* inner_ = nullptr;  // set for a block running a net inside
   std::vector<InternalPort> internal_;
   std::string name_, type_;
   ros::NodeHandle pnh_;
-  std::vector<PropertySpec> host_specs_;
-  PropertyValues host_values_;
+  std::unique_ptr<HostOptions> host_;
   std::vector<const PropertySpec*> specs_;
 
   std::mutex mutex_;  // callbacks of one nodelet are serial already; services and timers join them
@@ -465,16 +394,18 @@ class BlockHost {
   ros::ServiceServer run_srv_, set_srv_;
   ros::Timer timer_;
 
-  uint64_t runs_ = 0, failures_ = 0;
-  double last_ms_ = 0.0, total_ms_ = 0.0;
-  std::string last_error_;
-  std::string status_ = "pending", progress_;
+  BlockStats stats_;
+  bool running_ = false;
+  std::string progress_;
 };
 
 BlockNodeletBase::BlockNodeletBase() = default;
 BlockNodeletBase::~BlockNodeletBase() = default;
 
 void BlockNodeletBase::onInit() {
+  // A block that builds a net inside (a sub-net) may use any block type: the registry loads the
+  // other block libraries when it meets a type it does not know.
+  BlockRegistry::instance().setLibraryLoader(loadBlockLibraries);
   host_ = std::make_unique<BlockHost>([this] { return createBlock(); }, getName(), getPrivateNodeHandle());
   try {
     host_->start();

@@ -60,20 +60,12 @@ std::string paramToYaml(XmlRpc::XmlRpcValue value) {
   return out.c_str();
 }
 
-PropertyValue propertyFromParam(const PropertySpec& spec, const XmlRpc::XmlRpcValue& value) {
-  const bool textual = spec.kind() == PropertyKind::String || spec.kind() == PropertyKind::Enum;
-  if (textual && value.getType() == XmlRpc::XmlRpcValue::TypeString) {
-    // Already a string: no YAML reading ("a: b" is a fine string).
-    return spec.validate(static_cast<std::string>(const_cast<XmlRpc::XmlRpcValue&>(value)));
-  }
-  if (spec.kind() == PropertyKind::String &&
-      (value.getType() == XmlRpc::XmlRpcValue::TypeStruct || value.getType() == XmlRpc::XmlRpcValue::TypeArray)) {
-    return spec.validate(paramToYaml(value));
-  }
+std::string paramText(const XmlRpc::XmlRpcValue& value) {
+  // A string is not read as YAML ("a: b" is a fine string).
   if (value.getType() == XmlRpc::XmlRpcValue::TypeString) {
-    return spec.parse(static_cast<std::string>(const_cast<XmlRpc::XmlRpcValue&>(value)));
+    return static_cast<std::string>(const_cast<XmlRpc::XmlRpcValue&>(value));
   }
-  return spec.parse(paramToYaml(value));
+  return paramToYaml(value);
 }
 
 XmlRpc::XmlRpcValue propertyToParam(const PropertyValue& value) {

@@ -156,10 +156,4 @@ std::vector<std::pair<std::string, std::string>> decodeRequest(const dynamic_rec
   return out;
 }
 
-PropertyValue propertyFromRequest(const PropertySpec& spec, const std::string& text) {
-  // Strings are taken as they are; everything else reads like a net file's text.
-  if (spec.kind() == PropertyKind::String || spec.kind() == PropertyKind::Enum) return spec.validate(text);
-  return spec.parse(text);
-}
-
 }  // namespace imagenets

@@ -17,9 +17,8 @@ namespace imagenets {
 dynamic_reconfigure::ConfigDescription describeProperties(const std::vector<const PropertySpec*>& specs);
 dynamic_reconfigure::Config encodeProperties(const std::vector<const PropertySpec*>& specs,
                                              const PropertyValues& values);
-// The (name, text) pairs of a request; text is what a net file would hold for the value.
+// The (name, text) pairs of a request; text is what a net file would hold for the value (read it
+// with PropertySpec::parse).
 std::vector<std::pair<std::string, std::string>> decodeRequest(const dynamic_reconfigure::Config& config);
-// The checked value of one requested text for `spec`; throws PropertyError.
-PropertyValue propertyFromRequest(const PropertySpec& spec, const std::string& text);
 
 }  // namespace imagenets

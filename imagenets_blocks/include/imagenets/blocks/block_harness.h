@@ -1,5 +1,6 @@
-// For block tests: runs one block by type name outside any net, the way the executor would
-// (properties validated, configure() once, process() on a fresh Context), so a test can feed
+// For block tests: runs one block by type name outside any net, exactly the way every host runs
+// it (invokeBlock: properties validated, configure() once, required inputs checked, process() on a
+// fresh Context, outputs checked against the declared ports, stats recorded), so a test can feed
 // inputs and read outputs of exactly that block.
 #pragma once
 
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "imagenets/block.h"
+#include "imagenets/block_invocation.h"
 #include "imagenets/registry.h"
 
 namespace imagenets {
@@ -36,7 +38,8 @@ class BlockHarness {
     return *this;
   }
 
-  // Runs process() once; a BlockError propagates. Outputs of a failed run are cleared.
+  // Runs the block once; a failure (or a required input without a value) throws BlockError with
+  // the block's own message. Outputs of a failed run are cleared.
   void run() {
     if (!configured_) {
       block_->configure();
@@ -48,10 +51,12 @@ class BlockHarness {
       in.push_back(it == inputs_.end() ? Value{} : it->second);
     }
     outputs_.clear();
-    Context ctx("test", block_->inputs(), block_->outputs(), std::move(in), block_->propertyValues());
-    block_->process(ctx);
-    for (size_t i = 0; i < block_->outputs().size(); ++i) outputs_[block_->outputs()[i].name] = ctx.outputs()[i];
+    BlockInvocation result = invokeBlock(*block_, "test", std::move(in), block_->propertyValues());
+    stats_.record(result.status, result.message, result.ms, result.processed);
+    if (result.status != BlockStatus::Ok) throw BlockError(result.error);
+    for (size_t i = 0; i < block_->outputs().size(); ++i) outputs_[block_->outputs()[i].name] = result.outputs[i];
   }
+  const BlockStats& stats() const { return stats_; }
   // The error text of a run that must fail ("" if it did not fail).
   std::string runError() {
     try {
@@ -75,6 +80,7 @@ class BlockHarness {
  private:
   std::unique_ptr<Block> block_;
   bool configured_ = false;
+  BlockStats stats_;
   std::map<std::string, Value> inputs_;
   std::map<std::string, Value> outputs_;
 };

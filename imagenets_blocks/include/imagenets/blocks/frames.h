@@ -42,6 +42,7 @@ geometry_msgs::Quaternion toQuaternionMsg(const Eigen::Quaterniond& q);
 geometry_msgs::Vector3 toVector3Msg(const Eigen::Vector3d& v);
 geometry_msgs::Point toPointMsg(const Eigen::Vector3d& v);
 geometry_msgs::Pose toPose(const Eigen::Isometry3d& t);
+geometry_msgs::Pose toPose(const geometry_msgs::Transform& t);  // the same numbers, unchecked
 geometry_msgs::Transform toTransform(const Eigen::Isometry3d& t);
 // parent -> child, stamped: what tf2 broadcasters and frame ports carry.
 geometry_msgs::TransformStamped toTransformStamped(const Eigen::Isometry3d& t, const std::string& parent,

@@ -3,7 +3,7 @@
 #include <sensor_msgs/Image.h>
 #include <std_msgs/Float64.h>
 
-#include "../src/nodelet/input_pairing.h"
+#include "../../src/nodelet/input_pairing.h"
 
 namespace imagenets {
 namespace {

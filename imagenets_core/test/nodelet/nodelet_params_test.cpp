@@ -2,8 +2,8 @@
 // as net files; dicts become YAML text for string properties.
 #include <gtest/gtest.h>
 
-#include "../src/nodelet/param_text.h"
-#include "../src/nodelet/reconfigure.h"
+#include "../../src/nodelet/param_text.h"
+#include "../../src/nodelet/reconfigure.h"
 
 namespace imagenets {
 namespace {
@@ -14,20 +14,25 @@ PropertySpec intSpec() {
   return s;
 }
 
+// A parameter goes the one property-text path: its text, parsed by the spec.
+PropertyValue parseParam(const PropertySpec& spec, const XmlRpc::XmlRpcValue& value) {
+  return spec.parse(paramText(value));
+}
+
 TEST(NodeletParams, ScalarsAreCheckedLikeNetFileText) {
-  EXPECT_EQ(std::get<int>(propertyFromParam(intSpec(), XmlRpc::XmlRpcValue(72))), 72);
-  EXPECT_EQ(std::get<int>(propertyFromParam(intSpec(), XmlRpc::XmlRpcValue(std::string("72")))), 72);
+  EXPECT_EQ(std::get<int>(parseParam(intSpec(), XmlRpc::XmlRpcValue(72))), 72);
+  EXPECT_EQ(std::get<int>(parseParam(intSpec(), XmlRpc::XmlRpcValue(std::string("72")))), 72);
   try {
-    propertyFromParam(intSpec(), XmlRpc::XmlRpcValue(300));
+    parseParam(intSpec(), XmlRpc::XmlRpcValue(300));
     FAIL();
   } catch (const PropertyError& e) {
     EXPECT_STREQ(e.what(), "value 300 is out of range [0, 255]");
   }
-  EXPECT_THROW(propertyFromParam(intSpec(), XmlRpc::XmlRpcValue(2.5)), PropertyError);
+  EXPECT_THROW(parseParam(intSpec(), XmlRpc::XmlRpcValue(2.5)), PropertyError);
   PropertySpec d("sigma", PropertyKind::Double, 0.0, "");
-  EXPECT_DOUBLE_EQ(std::get<double>(propertyFromParam(d, XmlRpc::XmlRpcValue(2))), 2.0);
+  EXPECT_DOUBLE_EQ(std::get<double>(parseParam(d, XmlRpc::XmlRpcValue(2))), 2.0);
   PropertySpec b("invert", PropertyKind::Bool, false, "");
-  EXPECT_TRUE(std::get<bool>(propertyFromParam(b, XmlRpc::XmlRpcValue(true))));
+  EXPECT_TRUE(std::get<bool>(parseParam(b, XmlRpc::XmlRpcValue(true))));
 }
 
 TEST(NodeletParams, ListsAndDictsBecomeYaml) {
@@ -35,19 +40,19 @@ TEST(NodeletParams, ListsAndDictsBecomeYaml) {
   XmlRpc::XmlRpcValue v;
   v[0] = 1;
   v[1] = 2.5;
-  EXPECT_EQ(std::get<std::vector<double>>(propertyFromParam(list, v)), (std::vector<double>{1.0, 2.5}));
+  EXPECT_EQ(std::get<std::vector<double>>(parseParam(list, v)), (std::vector<double>{1.0, 2.5}));
 
   // A net written as a rosparam dict inside a launch file, given to a string property.
   XmlRpc::XmlRpcValue net;
   net["blocks"]["gray"]["type"] = std::string("imagenets/Grayscale");
   net["links"][0] = std::string("a.image -> gray.image");
   PropertySpec text("net_yaml", PropertyKind::String, std::string(), "");
-  const std::string yaml = std::get<std::string>(propertyFromParam(text, net));
+  const std::string yaml = std::get<std::string>(parseParam(text, net));
   EXPECT_NE(yaml.find("gray:"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("type: imagenets/Grayscale"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("a.image -> gray.image"), std::string::npos) << yaml;
   // A string that looks like YAML stays the string it is.
-  EXPECT_EQ(std::get<std::string>(propertyFromParam(text, XmlRpc::XmlRpcValue(std::string("a: b")))), "a: b");
+  EXPECT_EQ(std::get<std::string>(parseParam(text, XmlRpc::XmlRpcValue(std::string("a: b")))), "a: b");
 }
 
 TEST(NodeletParams, ReconfigureDescriptionCarriesTypesRangesAndChoices) {
@@ -75,9 +80,9 @@ TEST(NodeletParams, ReconfigureDescriptionCarriesTypesRangesAndChoices) {
   request.doubles.push_back(p);
   auto decoded = decodeRequest(request);
   ASSERT_EQ(decoded.size(), 1u);
-  EXPECT_EQ(std::get<int>(propertyFromRequest(threshold, decoded[0].second)), 72);
-  EXPECT_THROW(propertyFromRequest(mode, "sideways"), PropertyError);
-  EXPECT_EQ(std::get<std::vector<double>>(propertyFromRequest(list, "[3, 4]")), (std::vector<double>{3, 4}));
+  EXPECT_EQ(std::get<int>(threshold.parse(decoded[0].second)), 72);
+  EXPECT_THROW(mode.parse("sideways"), PropertyError);
+  EXPECT_EQ(std::get<std::vector<double>>(list.parse("[3, 4]")), (std::vector<double>{3, 4}));
 }
 
 }  // namespace

@@ -6,11 +6,11 @@ namespace imagenets {
 
 class Executor;
 
-class SubNetAccess {
+class InnerNet {
  public:
-  virtual ~SubNetAccess() = default;
+  virtual ~InnerNet() = default;
   // The inner executor (null before configure()); its public API is thread-safe.
-  virtual const Executor* subExecutor() const = 0;
+  virtual const Executor* innerExecutor() const = 0;
 };
 
 }  // namespace imagenets

@@ -1,0 +1,27 @@
+// A block that stands for a port of the net it sits in (paper 3.5): when that net runs as a block
+// of another net (imagenets/Executor), the outer block gets a port of this name and type. The
+// outer block feeds an input port's `value` input, and reads an output port's `value` output.
+// imagenets/ExecutorInput and imagenets/ExecutorOutput are the engine's own; any block library may
+// add others, the sub-net block finds them through this interface, not by type name.
+#pragma once
+
+#include <string>
+
+namespace imagenets {
+
+class PortType;
+
+class NetPort {
+ public:
+  enum class Direction { In, Out };
+  virtual ~NetPort() = default;
+  virtual Direction direction() const = 0;
+  // The port's name on the outer block (after configure()); empty = the block's name in the net.
+  virtual std::string outerName() const = 0;
+  virtual const PortType& type() const = 0;
+};
+
+// The port type a net port's `type` property names; throws PropertyError listing the known types.
+const PortType& netPortType(const std::string& name);
+
+}  // namespace imagenets

@@ -1,0 +1,57 @@
+#include "imagenets/block_invocation.h"
+
+#include <chrono>
+
+#include "imagenets/registry.h"
+
+namespace imagenets {
+
+int missingInput(const Block& block, const std::vector<Value>& inputs) {
+  for (size_t i = 0; i < block.inputs().size(); ++i) {
+    if (!block.inputs()[i].optional && (i >= inputs.size() || !inputs[i])) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<Value> inputs,
+                            PropertyValues properties, RunChannel channel, const std::function<void()>& starting) {
+  BlockInvocation result;
+  result.outputs.resize(block.outputs().size());
+  inputs.resize(block.inputs().size());
+  result.missing_input = missingInput(block, inputs);
+  if (result.missing_input >= 0) {
+    result.status = BlockStatus::NotRun;
+    result.error = result.message = "input '" + block.inputs()[result.missing_input].name + "' has no value";
+    return result;
+  }
+  const std::function<bool()> cancelled = channel.cancelled;
+  Context ctx(name, block.inputs(), block.outputs(), std::move(inputs), std::move(properties));
+  ctx.setRunChannel(std::move(channel));
+  if (starting) starting();
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    block.process(ctx);
+  } catch (const RunCancelled&) {
+    result.error = cancelled && cancelled() ? "cancelled" : "stopped as if cancelled, but the run was not cancelled";
+    result.cancelled = cancelled && cancelled();
+  } catch (const std::exception& e) {
+    result.error = e.what();
+  } catch (...) {
+    result.error = "unknown exception";
+  }
+  result.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.processed = true;
+  if (result.cancelled) {
+    result.status = BlockStatus::NotRun;
+    result.message = result.error;
+  } else if (result.error.empty()) {
+    result.status = BlockStatus::Ok;
+    result.outputs = std::move(ctx.outputs());
+  } else {
+    result.status = BlockStatus::Failed;
+    result.message = "block '" + name + "' (" + (block.info() ? block.info()->type : std::string("?")) + "): " + result.error;
+  }
+  return result;
+}
+
+}  // namespace imagenets

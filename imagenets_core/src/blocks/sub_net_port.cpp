@@ -1,0 +1,28 @@
+#include "imagenets/blocks/sub_net_port.h"
+
+#include "imagenets/registry.h"
+
+namespace imagenets {
+
+template <NetPort::Direction D>
+SubNetPort<D>::SubNetPort() {
+  addProperty<std::string>("port", "", "name of the port on the outer Executor block (default: this block's name)");
+  addProperty<std::string>("type", "sensor_msgs/Image", "message type of the port, e.g. std_msgs/Float64");
+}
+
+template <NetPort::Direction D>
+void SubNetPort<D>::configure() {
+  const PortType& port_type = netPortType(property<std::string>("type"));
+  const bool in = D == Direction::In;
+  addInput("value", port_type, in ? "set by the outer net" : "what the sub-net hands out");
+  addOutput("value", port_type, in ? "the value, unchanged" : "the value, read by the outer Executor block");
+}
+
+template class SubNetPort<NetPort::Direction::In>;
+template class SubNetPort<NetPort::Direction::Out>;
+
+}  // namespace imagenets
+
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::SubNetInput, "imagenets/ExecutorInput", "executor", "Input port of a sub-net");
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::SubNetOutput, "imagenets/ExecutorOutput", "executor",
+                              "Output port of a sub-net");

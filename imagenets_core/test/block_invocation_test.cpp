@@ -1,0 +1,78 @@
+// invokeBlock, the one way every host runs a block: required inputs checked, errors caught and
+// named, outputs taken only as declared, the result recorded in one BlockStats.
+#include <gtest/gtest.h>
+#include <std_msgs/Float64.h>
+
+#include "imagenets/block_invocation.h"
+#include "imagenets/registry.h"
+#include "test_blocks.h"
+
+using namespace imagenets;
+
+namespace {
+
+Value number(double v) {
+  auto msg = boost::make_shared<std_msgs::Float64>();
+  msg->data = v;
+  return PortType::of<std_msgs::Float64>().wrap(boost::shared_ptr<const std_msgs::Float64>(msg));
+}
+
+}  // namespace
+
+TEST(BlockInvocation, RunsTheBlockAndTimesIt) {
+  auto block = BlockRegistry::instance().create("test/Scale");
+  block->setProperty("gain", 3.0);
+  BlockInvocation run = invokeBlock(*block, "s", {number(2)}, block->propertyValues());
+  ASSERT_EQ(run.status, BlockStatus::Ok) << run.message;
+  EXPECT_TRUE(run.processed);
+  EXPECT_GE(run.ms, 0.0);
+  ASSERT_EQ(run.outputs.size(), 1u);
+  EXPECT_DOUBLE_EQ(run.outputs[0].as<std_msgs::Float64>()->data, 6.0);
+  BlockStats stats;
+  stats.record(run.status, run.message, run.ms, run.processed);
+  EXPECT_EQ(stats.runs, 1u);
+  EXPECT_EQ(stats.failures, 0u);
+}
+
+TEST(BlockInvocation, AMissingRequiredInputIsNamedAndTheBlockNotCalled) {
+  imagenets::test::resetCalls();
+  auto block = BlockRegistry::instance().create("test/Add");
+  // `b` is optional: only `a` is required.
+  BlockInvocation run = invokeBlock(*block, "add", {Value(), number(1)}, block->propertyValues());
+  EXPECT_EQ(run.status, BlockStatus::NotRun);
+  EXPECT_EQ(run.missing_input, 0);
+  EXPECT_EQ(run.error, "input 'a' has no value");
+  EXPECT_FALSE(run.processed);
+  EXPECT_EQ(imagenets::test::calls("add"), 0);
+  EXPECT_EQ(invokeBlock(*block, "add", {number(1)}, block->propertyValues()).status, BlockStatus::Ok);
+}
+
+TEST(BlockInvocation, AnErrorIsCaughtNamedAndCounted) {
+  auto block = BlockRegistry::instance().create("test/Scale");
+  block->setProperty("fail", true);
+  BlockInvocation run = invokeBlock(*block, "s", {number(2)}, block->propertyValues());
+  EXPECT_EQ(run.status, BlockStatus::Failed);
+  EXPECT_EQ(run.error, "asked to fail");
+  EXPECT_EQ(run.message, "block 's' (test/Scale): asked to fail");
+  EXPECT_FALSE(run.outputs[0]);
+  BlockStats stats;
+  stats.record(run.status, run.message, run.ms, run.processed);
+  EXPECT_EQ(stats.runs, 1u);
+  EXPECT_EQ(stats.failures, 1u);
+  EXPECT_EQ(stats.last_error, run.message);
+}
+
+TEST(BlockInvocation, CancelledOnlyWhenTheRunWas) {
+  // A block that stops on cancel when the run was not cancelled has failed.
+  class StopsEarly : public Block {
+   public:
+    void process(Context&) override { throw RunCancelled(); }
+  } block;
+  BlockInvocation run = invokeBlock(block, "stop", {}, {});
+  EXPECT_EQ(run.status, BlockStatus::Failed);
+  EXPECT_FALSE(run.cancelled);
+  run = invokeBlock(block, "stop", {}, {}, RunChannel{{}, [] { return true; }});
+  EXPECT_EQ(run.status, BlockStatus::NotRun);
+  EXPECT_TRUE(run.cancelled);
+  EXPECT_EQ(run.message, "cancelled");
+}
