@@ -450,6 +450,13 @@ json DesignerSession::opAddBlock(int, const json& request) {
   b.name = request.contains("name") && !request["name"].is_null() ? stringField(request, "name")
                                                                    : uniqueName(doc_, nameFromType(b.type));
   b.loc = SourceLocation{doc_.spec.origin, 0};
+  // A block that cannot be built with its defaults (a sub-net needs its net) comes with properties.
+  if (request.contains("properties") && !request["properties"].is_null()) {
+    if (!request["properties"].is_object()) throw RequestError("request 'add_block': 'properties' must be {name: text}");
+    for (auto it = request["properties"].begin(); it != request["properties"].end(); ++it) {
+      b.properties.push_back(PropertySetting{it.key(), propertyText(it.value()), b.loc});
+    }
+  }
   if (request.contains("position") && !request["position"].is_null()) {
     next.positions[b.name] = positionOf(request["position"], "add_block");
   }
