@@ -197,33 +197,31 @@ class PlainPass : public nodelet::Nodelet {
   ros::Subscriber sub_;
 };
 
-Figures inOneManagerPlain() {
-  // This process is the manager; the plain nodelets are created directly (no plug-in lookup).
-  nodelet::Loader manager([](const std::string&) { return boost::shared_ptr<nodelet::Nodelet>(new PlainPass); });
+// The chain of `type` nodelets named /<prefix>1.. in `manager` (this process: driver and nodelets
+// share it), timed end to end.
+Figures chainInOneManager(nodelet::Loader& manager, const std::string& type, const std::string& prefix) {
+  const std::string in = "/bench/" + prefix + "_in";
   for (int i = 1; i <= kBlocks; ++i) {
-    const std::string name = blockName("h", i);
-    nodelet::M_string remap{{name + "/in/image", i == 1 ? "/bench/h_in" : blockName("h", i - 1) + "/out/image"}};
-    if (!manager.load(name, "bench/PlainPass", remap, {})) {
-      std::fprintf(stderr, "could not load the plain nodelet\n");
+    const std::string name = blockName(prefix, i);
+    nodelet::M_string remap{{name + "/in/image", i == 1 ? in : blockName(prefix, i - 1) + "/out/image"}};
+    if (!manager.load(name, type, remap, {})) {
+      std::fprintf(stderr, "could not load %s as a nodelet (plug-in path?)\n", type.c_str());
       std::exit(1);
     }
   }
-  Driver driver("/bench/h_in", blockName("h", kBlocks) + "/out/image");
+  Driver driver(in, blockName(prefix, kBlocks) + "/out/image");
   return driver.run();
 }
 
 Figures inOneManager() {
-  nodelet::Loader manager(false);  // this process is the manager: driver and blocks share it
-  for (int i = 1; i <= kBlocks; ++i) {
-    const std::string name = blockName("m", i);
-    nodelet::M_string remap{{name + "/in/image", i == 1 ? "/bench/m_in" : blockName("m", i - 1) + "/out/image"}};
-    if (!manager.load(name, "imagenets/Grayscale", remap, {})) {
-      std::fprintf(stderr, "could not load imagenets/Grayscale as a nodelet (plug-in path?)\n");
-      std::exit(1);
-    }
-  }
-  Driver driver("/bench/m_in", blockName("m", kBlocks) + "/out/image");
-  return driver.run();
+  nodelet::Loader manager(false);
+  return chainInOneManager(manager, "imagenets/Grayscale", "m");
+}
+
+Figures inOneManagerPlain() {
+  // The plain nodelets are created directly (no plug-in lookup).
+  nodelet::Loader manager([](const std::string&) { return boost::shared_ptr<nodelet::Nodelet>(new PlainPass); });
+  return chainInOneManager(manager, "bench/PlainPass", "h");
 }
 
 Figures inSeparateProcesses() {

@@ -13,7 +13,7 @@ std::string describe(const BlockSpec& b) { return "block '" + b.name + "' (" + b
 
 }  // namespace
 
-NetBuilder::NetBuilder(const NetSpec& spec) : spec_(spec), scope_(spec), net_(std::make_unique<Net>()) {
+NetBuilder::NetBuilder(const NetSpec& spec) : spec_(spec), scope_(spec_), net_(std::make_unique<Net>()) {
   net_->origin_ = spec.origin;
   net_->base_dir_ = spec.base_dir;
 }

@@ -11,7 +11,7 @@
 #include "imagenets/graph.h"
 #include "imagenets/net_writer.h"
 #include "imagenets/registry.h"
-#include "imagenets/sub_net_access.h"
+#include "imagenets/inner_net.h"
 #include "launch_export.h"
 #include "net_state_json.h"
 #include "port_data.h"
@@ -205,9 +205,8 @@ void DesignerSession::setExecutorProperty(const NetDocument& doc, const std::str
   }
   PropertyValue value;
   try {
-    value = text ? spec->parse(*text) : spec->defaultValue();
     // Relative paths name files beside the net file, as when the net is loaded.
-    if (text && spec->isPath()) value = resolvePath(std::get<std::string>(value), doc.spec.base_dir);
+    value = text ? spec->parse(*text, doc.spec.base_dir) : spec->defaultValue();
   } catch (const std::exception& e) {
     throw NetError({where + "property '" + property + "': " + e.what()});
   }
@@ -235,9 +234,7 @@ bool DesignerSession::configurationChanged(const NetDocument& previous, const Ne
       for (const auto& p : b.properties) {
         const PropertySpec* spec = fresh->findProperty(p.name);
         if (!spec) return false;  // setExecutorProperty names it
-        PropertyValue v = spec->parse(p.text);
-        if (spec->isPath()) v = resolvePath(std::get<std::string>(v), next.spec.base_dir);
-        fresh->setProperty(p.name, v);
+        fresh->setProperty(p.name, spec->parse(p.text, next.spec.base_dir));
       }
       LoadContext::Scope scope(next.spec);
       fresh->configure();
@@ -766,8 +763,8 @@ json DesignerSession::opSubnet(int, const json& request) {
   if (n < 0) throw RequestError("no block named '" + name + "'");
   const Block& b = *executor_->net().node(n).block;
   if (!b.subNet()) throw RequestError("block '" + name + "' (" + (b.info() ? b.info()->type : "?") + ") has no sub-net");
-  const auto* access = dynamic_cast<const SubNetAccess*>(&b);
-  json state = builtNetState(*b.subNet(), access ? access->subExecutor() : nullptr);
+  const auto* inner = dynamic_cast<const InnerNet*>(&b);
+  json state = builtNetState(*b.subNet(), inner ? inner->innerExecutor() : nullptr);
   state["block"] = name;
   const std::string inline_yaml = b.findProperty("net_yaml") ? std::get<std::string>(b.propertyValue("net_yaml")) : "";
   try {

@@ -75,8 +75,8 @@ std::string exportLaunch(const NetSpec& spec) {
       PropertyKind kind = ps ? ps->kind() : PropertyKind::String;
       if (ps) {
         try {
-          PropertyValue v = ps->parse(p.text);
-          if (ps->isPath()) v = launchPath(resolvePath(std::get<std::string>(v), spec.base_dir));
+          PropertyValue v = ps->parse(p.text, spec.base_dir);
+          if (ps->isPath()) v = launchPath(std::get<std::string>(v));
           value = toString(v);
         } catch (const std::exception&) {
         }

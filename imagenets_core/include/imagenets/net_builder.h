@@ -41,7 +41,7 @@ class NetBuilder {
   std::unique_ptr<Net> finish();
 
  private:
-  const NetSpec& spec_;
+  const NetSpec spec_;        // a copy: the builder may outlive the caller's spec
   LoadContext::Scope scope_;  // blocks' configure() sees the net being built
   std::unique_ptr<Net> net_;
   std::set<std::string> names_;  // every block declared, created or not
