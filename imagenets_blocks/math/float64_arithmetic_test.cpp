@@ -5,16 +5,12 @@
 #include <std_msgs/Float64.h>
 
 #include "imagenets/blocks/block_harness.h"
+#include "number_test_util.h"
 
 using namespace imagenets::blocks;
+using imagenets::blocks::test::number;
 
 namespace {
-boost::shared_ptr<std_msgs::Float64> number(double v) {
-  auto m = boost::make_shared<std_msgs::Float64>();
-  m->data = v;
-  return m;
-}
-
 double compute(const std::string& op, double a, double b) {
   BlockHarness h("imagenets/Float64Arithmetic");
   h.set("operation", op);
