@@ -53,9 +53,13 @@ function Designer() {
   const colorsRef = useRef({});
   const flowRef = useRef({ nodes, edges });
   flowRef.current = { nodes, edges };
+  const fileRef = useRef(undefined);
   const applyNet = useCallback((state) => {
     setNet(state);
-    const built = flowFromNet(state, colorsRef.current, flowRef.current.nodes, flowRef.current.edges);
+    // Another file: nothing of the old canvas carries over (block names may repeat).
+    const same = fileRef.current === undefined || fileRef.current === state.file;
+    fileRef.current = state.file;
+    const built = flowFromNet(state, colorsRef.current, same ? flowRef.current.nodes : [], same ? flowRef.current.edges : []);
     flowRef.current = built;
     setNodes(built.nodes);
     setEdges(built.edges);
@@ -113,7 +117,12 @@ function Designer() {
     });
   };
 
-  useEffect(() => { if (connected) attempt('watch', { ports: [...watched], mode: 'preview' }); }, [watched, connected]);
+  // Only ports that still exist are watched (a block may have gone by an edit in any tab).
+  const watchedPorts = useMemo(() => JSON.stringify([...watched].filter((key) => {
+    const [block, port] = split(key);
+    return net?.blocks.some((b) => b.name === block && b.outputs.some((p) => p.name === port));
+  }).sort()), [watched, net]);
+  useEffect(() => { if (connected) attempt('watch', { ports: JSON.parse(watchedPorts), mode: 'preview' }); }, [watchedPorts, connected]);
   useEffect(() => {
     if (!connected) return;
     setFullData(null);
