@@ -37,12 +37,12 @@ function Designer() {
   const [fullData, setFullData] = useState(null);
   const [dialog, setDialog] = useState(null);
   const [subnet, setSubnet] = useState(null);
-  const [autoRun, setAutoRun] = useState(true);
   const [showYaml, setShowYaml] = useState(true);
   const [ghost, setGhost] = useState(null);
   const [connected, setConnected] = useState(false);
   const wrapper = useRef(null);
   const clipboard = useRef(null);
+  const fitAtStart = useRef(null);
   const colors = registry?.types || {};
 
   const say = (text, error = false) => setMessage({ text, error, at: Date.now() });
@@ -79,8 +79,6 @@ function Designer() {
       colorsRef.current = reply.registry.types;
       applyNet(reply.net);
       setConnected(true);
-      conn.request('auto_run', { on: true });
-      setTimeout(() => flow.fitView({ padding: 0.1 }), 50);
     }).catch((err) => say(err.message, true));
     return () => offs.forEach((off) => off());
   }, [conn]);
@@ -152,8 +150,25 @@ function Designer() {
   };
   const selectedNames = () => nodes.filter((n) => n.selected).map((n) => n.id);
   const addBlock = async (type, position) => {
-    const r = await attempt('add_block', { type, position: [Math.round(position.x), Math.round(position.y)] });
-    return r?.name;
+    const at = [Math.round(position.x), Math.round(position.y)];
+    try {
+      return (await request('add_block', { type, position: at })).name;
+    } catch (err) {
+      // A block built from a file (a sub-net's `net`) cannot exist without it: ask for the file.
+      const entry = registry.blocks.find((b) => b.type === type);
+      const paths = (entry?.properties || []).filter((p) => p.path);
+      const property = paths.find((p) => err.message.includes(`'${p.name}'`)) || paths[0];
+      if (!property) { say(err.message, true); return null; }
+      say(err.message, true);
+      return new Promise((resolve) => setDialog({ kind: 'choose', title: `${property.name} of the new ${type.replace(/^imagenets\//, '')}`,
+        onDone: async (path) => {
+          const base = type.replace(/^.*\//, '').replace(/([a-z])([A-Z])/g, '$1_$2').toLowerCase();
+          const r = await request('paste', { blocks: [{ name: base, type, properties: { [property.name]: path }, position: at }], links: [] });
+          say(`added ${r.names[base]}`);
+          resolve(r.names[base]);
+        },
+        onClose: () => { setDialog(null); resolve(null); } }));
+    }
   };
   const removeSelected = async () => {
     const names = selectedNames();
@@ -168,7 +183,9 @@ function Designer() {
     clipboard.current = {
       blocks: net.blocks.filter((b) => names.has(b.name)).map((b) => {
         const n = nodes.find((x) => x.id === b.name);
-        return { name: b.name, type: b.type, properties: b.properties, feedback: b.feedback,
+        // Like links, feedback is kept only when its score port is inside the selection too.
+        const feedback = b.feedback && names.has(split(b.feedback.score)[0]) ? b.feedback : null;
+        return { name: b.name, type: b.type, properties: b.properties, feedback,
           position: [Math.round(n.position.x), Math.round(n.position.y)] };
       }),
       links: net.links.filter((l) => names.has(split(l.from)[0]) && names.has(split(l.to)[0])).map(({ from, to }) => ({ from, to })),
@@ -248,7 +265,8 @@ function Designer() {
 
   const openSearch = (clientX, clientY, inputType = null, from = null) => {
     const r = wrapper.current.getBoundingClientRect();
-    setSearch({ at: { x: clientX - r.left, y: clientY - r.top }, flowAt: flow.screenToFlowPosition({ x: clientX, y: clientY }), inputType, from });
+    const x = Math.min(clientX - r.left, r.width - 270), y = Math.min(clientY - r.top, r.height - 310); // stays inside
+    setSearch({ at: { x: Math.max(0, x), y: Math.max(0, y) }, flowAt: flow.screenToFlowPosition({ x: clientX, y: clientY }), inputType, from });
   };
   const pickSearch = async (type) => {
     const s = search;
@@ -263,6 +281,7 @@ function Designer() {
   if (!registry || !net) {
     return <div className="loading">{message ? message.text : 'connecting to the designer…'}</div>;
   }
+  if (fitAtStart.current === null) fitAtStart.current = net.blocks.length > 0; // an empty canvas stays at 100%
   const selected = nodes.filter((n) => n.selected);
   const selectedBlock = selected.length === 1 ? net.blocks.find((b) => b.name === selected[0].id) : null;
   const fileName = net.file ? net.file.split('/').pop() : 'untitled net';
@@ -278,8 +297,8 @@ function Designer() {
         <button data-testid="run-block" disabled={!selectedBlock} onClick={() => run('run_block', { block: selectedBlock.name })}>Run block</button>
         <button data-testid="cancel" disabled={!running.size} onClick={() => attempt('cancel')}>Cancel</button>
         <label title="re-run the changed block and its downstream after each property change">
-          <input type="checkbox" data-testid="auto-run" checked={autoRun}
-            onChange={(e) => { setAutoRun(e.target.checked); attempt('auto_run', { on: e.target.checked }); }} /> auto-run</label>
+          <input type="checkbox" data-testid="auto-run" checked={net.auto_run !== false}
+            onChange={(e) => attempt('auto_run', { on: e.target.checked })} /> auto-run</label>
         <span className="sep" />
         <button data-testid="undo" disabled={!net.can_undo} title="Ctrl+Z" onClick={() => attempt('undo')}>Undo</button>
         <button data-testid="redo" disabled={!net.can_redo} title="Ctrl+Y" onClick={() => attempt('redo')}>Redo</button>
@@ -311,7 +330,8 @@ function Designer() {
                 ?.outputs.find((p) => p.name === state.fromHandle.id);
               if (port) openSearch(point.clientX, point.clientY, port.type, `${state.fromNode.id}.${port.name}`);
             }}
-            deleteKeyCode={null} zoomOnDoubleClick={false} colorMode="dark" fitView>
+            deleteKeyCode={null} zoomOnDoubleClick={false} colorMode="dark"
+            fitView={fitAtStart.current} fitViewOptions={{ padding: 0.1, maxZoom: 1 }}>
             <Background />
             <Controls />
             <MiniMap pannable zoomable nodeColor={(n) => (running.has(n.id) ? '#f5c542' : '#8aa')} />
@@ -337,6 +357,8 @@ function Designer() {
         onClose={() => setDialog(null)} />}
       {dialog?.kind === 'saveas' && <FileDialog title="Save as" initialPath={net.file} request={request}
         onDone={(path) => save(path)} onClose={() => setDialog(null)} />}
+      {dialog?.kind === 'choose' && <FileDialog title={`Choose ${dialog.title}`} request={request}
+        initialPath={net.file} onDone={dialog.onDone} onClose={dialog.onClose} />}
       {dialog?.kind === 'export' && <ExportDialog {...dialog} onClose={() => setDialog(null)} />}
     </div>
   );

@@ -3,12 +3,16 @@ import React from 'react';
 // What a watched output shows on its node (paper Fig. 3.3): thumbnails, numbers, frames, traces.
 export function Preview({ port, data }) {
   const { header, value, url } = data;
-  if (url) {
-    return <img className="preview-image" src={url} alt={port} data-revision={header.revision}
-      onLoad={() => noteShown(port, header.revision)} />;
+  const revision = header.run ?? header.revision;
+  if (header.format === 'none') {
+    return <div className="preview-value none" data-revision={revision}>no value{header.error ? `: ${header.error}` : ''}</div>;
   }
-  const shown = (element) => <div className="preview-value" ref={() => noteShown(port, header.revision)}
-    data-revision={header.revision}>{element}</div>;
+  if (url) {
+    return <img className="preview-image" src={url} alt={port} data-revision={revision}
+      onLoad={() => noteShown(port, revision)} />;
+  }
+  const shown = (element) => <div className="preview-value" ref={(e) => e && noteShown(port, revision)}
+    data-revision={revision}>{element}</div>;
   if (header.format === 'xyzrgb') return shown(`${Math.floor(data.payload.byteLength / 16)} points`);
   if (value && Array.isArray(value.scores)) return shown(<TracePlot trace={value} />);
   if (value && typeof value.data === 'number') return shown(<b>{round(value.data)}</b>);

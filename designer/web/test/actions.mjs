@@ -9,6 +9,7 @@ const handleSel = (key, side) => {
 
 async function centre(page, selector) {
   const element = await page.waitForSelector(selector, { visible: true, timeout: LONG });
+  await element.evaluate((e) => e.scrollIntoView({ block: 'nearest', inline: 'nearest' }));
   const box = await element.boundingBox();
   return { x: box.x + box.width / 2, y: box.y + box.height / 2 };
 }
@@ -20,13 +21,21 @@ export async function blockNames(page) {
 // Drags a block from the browser onto the canvas at page coordinates; returns its new name.
 export async function dragBlockIn(page, type, x, y) {
   const before = new Set(await blockNames(page));
+  await dragBlock(page, type, x, y);
+  return newBlock(page, before, type);
+}
+
+export async function newBlock(page, before, what) {
+  return until(`block ${what} on the canvas`, async () => (await blockNames(page)).find((n) => !before.has(n)));
+}
+
+export async function dragBlock(page, type, x, y) {
   const from = await centre(page, `.block-entry[data-type="${type}"] .entry-name`);
   await page.mouse.move(from.x, from.y);
   await page.mouse.down();
   await page.mouse.move(from.x + 40, from.y + 10, { steps: 4 });
   await page.mouse.move(x, y, { steps: 10 });
   await page.mouse.up();
-  return until(`block ${type} on the canvas`, async () => (await blockNames(page)).find((n) => !before.has(n)));
 }
 
 // Drags from an output handle to an input handle ("block.port" each).

@@ -15,7 +15,7 @@ export const imagenets = process.env.IMAGENETS_BIN || path.join(source, 'build/d
 const chromium = process.env.CHROMIUM || '/usr/bin/chromium';
 
 // Generous: the machine may be busy with builds of other work.
-export const LONG = 60000;
+export const LONG = Number(process.env.LONG || 60000);
 
 export function tempDir(prefix) {
   return fs.mkdtempSync(path.join(os.tmpdir(), `designer-${prefix}-`));
