@@ -118,6 +118,11 @@ class ReadmeCommands(unittest.TestCase):
         out = self.run_command("README.md", "rosrun imagenets imagenets blocks")
         self.assertIn("imagenets/Threshold - Fixed threshold", out)
 
+    def test_tool_on_path_lists_its_commands(self):
+        out = self.run_command("README.md", "imagenets --help")
+        self.assertIn("usage: imagenets COMMAND", out)
+        self.assertIn("  run ", out)
+
     def test_tool_on_path_runs_a_net(self):
         out_dir = os.path.join(REPO, "out/stereo")
         shutil.rmtree(out_dir, ignore_errors=True)
