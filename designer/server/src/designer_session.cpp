@@ -731,6 +731,8 @@ json DesignerSession::opSave(int, const json& request) {
   saved_text_ = text;
   errors_.clear();
   changed();
+  // Open file dialogs in other tabs list the folder again.
+  out_.broadcast(dump({{"op", "files"}, {"dir", fs::path(target).parent_path().string()}, {"file", target}}));
   return {{"file", target}};
 }
 
