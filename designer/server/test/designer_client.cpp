@@ -69,6 +69,7 @@ DesignerClient::DesignerClient(int port, const std::string& host) : impl_(std::m
   tcp::resolver resolver(impl_->ioc);
   auto endpoints = resolver.resolve(host, std::to_string(port));
   beast::get_lowest_layer(impl_->ws).connect(endpoints);
+  beast::get_lowest_layer(impl_->ws).socket().set_option(tcp::no_delay(true));
   impl_->ws.read_message_max(0);
   impl_->ws.handshake(host + ":" + std::to_string(port), "/ws");
   impl_->open = true;

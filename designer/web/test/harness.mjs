@@ -11,7 +11,7 @@ const require = createRequire(import.meta.url);
 const puppeteer = require('puppeteer-core');
 
 export const source = process.env.IMAGENETS_SOURCE || path.resolve(new URL('../../..', import.meta.url).pathname);
-export const imagenets = process.env.IMAGENETS_BIN || path.join(source, 'build/devel/lib/imagenets/imagenets');
+export const imagenets = process.env.IMAGENETS_BIN || path.join(source, 'devel/bin/imagenets');
 const chromium = process.env.CHROMIUM || '/usr/bin/chromium';
 
 // Generous: the machine may be busy with builds of other work.
