@@ -204,8 +204,10 @@ function Designer() {
     }
   };
   const autoLayout = () => {
-    const positions = layeredLayout(net.blocks, net.links);
-    attempt('move_blocks', { positions }).then(() => setTimeout(() => flow.fitView({ padding: 0.1 }), 50));
+    const sizes = Object.fromEntries(flow.getNodes().filter((n) => n.measured?.width)
+      .map((n) => [n.id, { width: n.measured.width, height: n.measured.height }]));
+    const positions = layeredLayout(net.blocks, net.links, sizes);
+    attempt('move_blocks', { positions }).then(() => setTimeout(() => flow.fitView({ padding: 0.1, maxZoom: 1 }), 50));
   };
   const save = async (path) => {
     const r = await request('save', path ? { path } : {});
@@ -302,7 +304,7 @@ function Designer() {
         <span className="sep" />
         <button data-testid="undo" disabled={!net.can_undo} title="Ctrl+Z" onClick={() => attempt('undo')}>Undo</button>
         <button data-testid="redo" disabled={!net.can_redo} title="Ctrl+Y" onClick={() => attempt('redo')}>Redo</button>
-        <button onClick={autoLayout}>Layout</button>
+        <button data-testid="layout" onClick={autoLayout}>Layout</button>
         <span className="sep" />
         <button onClick={exportLaunch}>Export launch</button>
         <button onClick={exportGraph}>Export SVG</button>
