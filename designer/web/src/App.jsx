@@ -136,10 +136,22 @@ function Designer() {
     },
   }), []);
 
-  const shownNodes = useMemo(() => nodes.map((n) => {
-    const block = net?.blocks.find((b) => b.name === n.id);
-    return block ? { ...n, data: { block, colors, running: running.has(n.id), cached: cached.has(n.id), previews, watched, actions } } : n;
-  }).filter((n) => n.data.block), [nodes, net, colors, running, cached, previews, watched, actions]);
+  // Each node's data object changes only when something it shows changes, so that the memoized
+  // BlockNode re-renders only the nodes a message concerns (previews arrive many times a second).
+  const nodeData = useRef(new Map());
+  const shownNodes = useMemo(() => {
+    const blocks = new Map((net?.blocks || []).map((b) => [b.name, b]));
+    return nodes.filter((n) => blocks.has(n.id)).map((n) => {
+      const own = [...watched].filter((k) => split(k)[0] === n.id);
+      const data = { block: blocks.get(n.id), colors, running: running.has(n.id), cached: cached.has(n.id),
+        previews: Object.fromEntries(own.map((k) => [k, previews[k]])), watched: new Set(own), actions };
+      const old = nodeData.current.get(n.id);
+      const same = old && ['block', 'colors', 'running', 'cached', 'actions'].every((k) => old[k] === data[k])
+        && own.length === old.watched.size && own.every((k) => old.watched.has(k) && old.previews[k] === data.previews[k]);
+      if (!same) nodeData.current.set(n.id, data);
+      return { ...n, data: same ? old : data };
+    });
+  }, [nodes, net, colors, running, cached, previews, watched, actions]);
 
   // --- edits -----------------------------------------------------------------------------------
   const run = async (op, args) => {

@@ -9,7 +9,8 @@ const handleSel = (key, side) => {
 
 async function centre(page, selector) {
   const element = await page.waitForSelector(selector, { visible: true, timeout: LONG });
-  await element.evaluate((e) => e.scrollIntoView({ block: 'nearest', inline: 'nearest' }));
+  // Scrolls lists (the block browser) but never the canvas, whose content it would shift.
+  await element.evaluate((e) => { if (!e.closest('.react-flow')) e.scrollIntoView({ block: 'nearest' }); });
   const box = await element.boundingBox();
   return { x: box.x + box.width / 2, y: box.y + box.height / 2 };
 }
@@ -47,6 +48,12 @@ export async function connect(page, from, to) {
   await page.mouse.move((a.x + b.x) / 2, (a.y + b.y) / 2 + 20, { steps: 6 });
   await page.mouse.move(b.x, b.y, { steps: 6 });
   await page.mouse.up();
+}
+
+// Links as a user does: drag, then see the link drawn before going on.
+export async function link(page, from, to) {
+  await connect(page, from, to);
+  await until(`the link ${from} -> ${to}`, async () => (await linkIds(page)).includes(`${from}->${to}`));
 }
 
 export async function linkIds(page) {

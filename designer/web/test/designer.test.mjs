@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { LONG, copyConfig, launchBrowser, openDesigner, run, startDesigner, tempDir, until, imagenets } from './harness.mjs';
 import {
-  allStats, blockNames, click, connect, dragBlock, dragBlockIn, newBlock, linkIds, message, nodeSel, select, setProperty, stats, watch,
+  allStats, blockNames, click, connect, dragBlock, link, dragBlockIn, newBlock, linkIds, message, nodeSel, select, setProperty, stats, watch,
 } from './actions.mjs';
 
 let browser;
@@ -89,15 +89,15 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
   await step('drags ImageFileSource, Grayscale, Threshold, SegmentationQuality in and links them', async () => {
     source = await dragBlockIn(page, 'imagenets/ImageFileSource', ...at(0.12, 0.3));
     gray = await dragBlockIn(page, 'imagenets/Grayscale', ...at(0.4, 0.3));
-    threshold = await dragBlockIn(page, 'imagenets/Threshold', ...at(0.68, 0.15));
+    threshold = await dragBlockIn(page, 'imagenets/Threshold', ...at(0.68, 0.2));
     quality = await dragBlockIn(page, 'imagenets/SegmentationQuality', ...at(0.68, 0.55));
     await select(page, source);
     await setProperty(page, 'path', image);
     await until('the path set', async () => (await page.$eval('[data-testid="yaml"]', (y) => y.value)).includes('gradient.png'));
-    await connect(page, `${source}.image`, `${gray}.image`);
-    await connect(page, `${gray}.image`, `${threshold}.image`);
-    await connect(page, `${gray}.image`, `${quality}.gray`);
-    await connect(page, `${threshold}.image`, `${quality}.binary`);
+    await link(page, `${source}.image`, `${gray}.image`);
+    await link(page, `${gray}.image`, `${threshold}.image`);
+    await link(page, `${gray}.image`, `${quality}.gray`);
+    await link(page, `${threshold}.image`, `${quality}.binary`);
     await until('four links', async () => (await linkIds(page)).length === 4);
     assert.deepEqual(await linkIds(page), [
       `${gray}.image->${quality}.gray`, `${gray}.image->${threshold}.image`,
@@ -191,7 +191,7 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     await click(page, '[data-testid="file-ok"]');
     executor = await newBlock(page, before, 'imagenets/Executor');
     await page.waitForSelector(`${nodeSel(executor)} [data-handleid="image"]`, { timeout: LONG });
-    await connect(page, `${source}.image`, `${executor}.image`);
+    await link(page, `${source}.image`, `${executor}.image`);
     await until('five links', async () => (await linkIds(page)).length === 5);
     await click(page, `${nodeSel(executor)} button[title="open the sub-net"]`);
     await page.waitForSelector('[data-testid="subnet-view"] .react-flow__node', { timeout: LONG });

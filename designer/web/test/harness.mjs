@@ -92,8 +92,9 @@ export async function launchBrowser() {
 }
 
 // A page on the designer that fails the test on any page error; resolves once the net is shown.
-export async function openDesigner(browser, url) {
+export async function openDesigner(browser, url, beforeLoad = async () => {}) {
   const page = await browser.newPage();
+  await beforeLoad(page);
   await page.setViewport({ width: 1600, height: 1000 });
   page.errors = [];
   page.on('pageerror', (e) => page.errors.push(e.message));
