@@ -303,7 +303,7 @@ function Designer() {
     <div className="designer">
       <div className="toolbar">
         <span className="title" data-testid="file-name" title={net.file || ''}>{fileName}{net.dirty ? ' •' : ''}</span>
-        <button onClick={() => setDialog({ kind: 'open' })}>Open</button>
+        <button data-testid="open" onClick={() => setDialog({ kind: 'open' })}>Open</button>
         <button data-testid="save" onClick={() => (net.file ? save().catch((err) => say(err.message, true)) : setDialog({ kind: 'saveas' }))}>Save</button>
         <button data-testid="save-as" onClick={() => setDialog({ kind: 'saveas' })}>Save as</button>
         <span className="sep" />
@@ -318,8 +318,8 @@ function Designer() {
         <button data-testid="redo" disabled={!net.can_redo} title="Ctrl+Y" onClick={() => attempt('redo')}>Redo</button>
         <button data-testid="layout" onClick={autoLayout}>Layout</button>
         <span className="sep" />
-        <button onClick={exportLaunch}>Export launch</button>
-        <button onClick={exportGraph}>Export SVG</button>
+        <button data-testid="export-launch" onClick={exportLaunch}>Export launch</button>
+        <button data-testid="export-svg" onClick={exportGraph}>Export SVG</button>
         <label><input type="checkbox" checked={showYaml} onChange={(e) => setShowYaml(e.target.checked)} /> YAML</label>
         <span className={`message ${message?.error ? 'error' : ''}`} data-testid="message"
           title={message?.text}>{message?.text}</span>

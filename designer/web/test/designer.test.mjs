@@ -323,3 +323,67 @@ test('the 3D view draws the stereo point cloud', { timeout: 300000 }, async (t) 
   assert.ok(drawn > 5000, `${drawn} pixels differ from the background`);
   assert.deepEqual(page.errors, []);
 });
+
+test('files: open, the YAML pane, export; a second tab sees the same net', { timeout: 300000 }, async (t) => {
+  const dir = tempDir('files');
+  const config = copyConfig(dir);
+  const designer = await startDesigner({ roots: [dir] });
+  t.after(() => designer.stop());
+  const page = await openDesigner(browser, designer.url);
+
+  // Open through the file dialog.
+  await click(page, '[data-testid="open"]');
+  const field = await page.waitForSelector('[data-testid="file-path"]', { timeout: LONG });
+  await field.evaluate((i) => i.select());
+  await page.keyboard.type(path.join(config, 'nets/threshold_demo.yaml'));
+  await click(page, '[data-testid="file-ok"]');
+  await until('the opened net', async () => (await blockNames(page)).sort().join() === 'blur,gray,source,threshold');
+  assert.equal(await page.$eval('[data-testid="file-name"]', (e) => e.textContent), 'threshold_demo.yaml');
+
+  // A bad edit in the YAML pane: refused with the line, which is selected; nothing changes.
+  const yaml = await page.$eval('[data-testid="yaml"]', (y) => y.value);
+  const badLine = yaml.split('\n').indexOf('  blur:') + 1; // the engine names the block's line
+  await page.$eval('[data-testid="yaml"]', (y) => { y.focus(); y.setSelectionRange(0, 0); });
+  const edit = async (text) => {
+    await page.$eval('[data-testid="yaml"]', (y) => y.select());
+    await page.keyboard.press('Backspace');
+    // Typing the whole file is slow; paste-like input through the editor's own change event.
+    await page.$eval('[data-testid="yaml"]', (y, value) => {
+      const setter = Object.getOwnPropertyDescriptor(HTMLTextAreaElement.prototype, 'value').set;
+      setter.call(y, value);
+      y.dispatchEvent(new Event('input', { bubbles: true }));
+    }, text);
+    await click(page, '[data-testid="yaml-apply"]');
+  };
+  await edit(yaml.replace('type: imagenets/GaussianBlur', 'type: imagenets/NoSuchBlock'));
+  const error = await (await page.waitForSelector('[data-testid="yaml-error"]', { timeout: LONG })).evaluate((e) => e.textContent);
+  assert.match(error, /NoSuchBlock/);
+  assert.match(error, new RegExp(`:${badLine}:`));
+  const selectedLine = await page.$eval('[data-testid="yaml"]', (y) => y.value.slice(0, y.selectionStart).split('\n').length);
+  assert.equal(selectedLine, badLine);
+  assert.deepEqual((await blockNames(page)).sort(), ['blur', 'gray', 'source', 'threshold']);
+
+  // A good edit replaces the net; a second tab shows the same.
+  const second = await openDesigner(browser, designer.url);
+  await edit(yaml.replace('threshold: 60', 'threshold: 77').replace('  blur:\n', '  smooth:\n').replace(/blur\./g, 'smooth.'));
+  await until('the edited net', async () => (await blockNames(page)).includes('smooth'));
+  await until('the edited net in the second tab', async () => (await blockNames(second)).sort().join() === 'gray,smooth,source,threshold');
+  assert.match(await second.$eval('[data-testid="yaml"]', (y) => y.value), /threshold: 77/);
+  // ... and an edit in the second tab shows in the first.
+  await select(second, 'smooth');
+  await setProperty(second, 'kernel_size', 7);
+  await until('the property in the first tab', async () => /kernel_size: 7/.test(await page.$eval('[data-testid="yaml"]', (y) => y.value)));
+
+  // Exports.
+  await click(page, '[data-testid="export-launch"]');
+  const launch = await (await page.waitForSelector('[data-testid="export-dialog"] .export-text', { timeout: LONG })).evaluate((e) => e.textContent);
+  assert.match(launch, /<launch>/);
+  assert.match(launch, /nodelet/);
+  assert.match(launch, /smooth/);
+  await page.keyboard.press('Escape');
+  await click(page, '[data-testid="export-svg"]');
+  await page.waitForSelector('[data-testid="export-dialog"] .export-svg svg', { timeout: LONG });
+  const svgText = await page.$eval('[data-testid="export-dialog"] .export-svg svg', (s) => s.textContent);
+  for (const name of ['source', 'gray', 'smooth', 'threshold']) assert.match(svgText, new RegExp(name));
+  assert.deepEqual([...page.errors, ...second.errors], []);
+});
