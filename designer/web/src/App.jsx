@@ -106,13 +106,18 @@ function Designer() {
       setFullData((old) => (old && old.header.port !== header.port ? old : data));
       return;
     }
-    if (header.format === 'jpeg' || header.format === 'png') {
-      data.url = URL.createObjectURL(new Blob([payload], { type: `image/${header.format}` }));
-    }
-    setPreviews((p) => {
-      if (p[header.port]?.url) setTimeout(() => URL.revokeObjectURL(p[header.port].url), 1000);
-      return { ...p, [header.port]: data };
+    const store = (value) => setPreviews((p) => {
+      p[header.port]?.bitmap?.close();
+      return { ...p, [header.port]: value };
     });
+    // Thumbnails are decoded off the main thread, then drawn straight onto the node's canvas.
+    if (header.format === 'jpeg' || header.format === 'png') {
+      createImageBitmap(new Blob([payload], { type: `image/${header.format}` }))
+        .then((bitmap) => store({ ...data, bitmap }))
+        .catch((err) => store({ header: { ...header, format: 'none', error: `cannot decode: ${err.message}` } }));
+    } else {
+      store(data);
+    }
   };
 
   // Only ports that still exist are watched (a block may have gone by an edit in any tab).

@@ -1,16 +1,13 @@
-import React from 'react';
+import React, { useLayoutEffect, useRef } from 'react';
 
 // What a watched output shows on its node (paper Fig. 3.3): thumbnails, numbers, frames, traces.
 export function Preview({ port, data }) {
-  const { header, value, url } = data;
+  const { header, value } = data;
   const revision = header.run ?? header.revision;
   if (header.format === 'none') {
     return <div className="preview-value none" data-revision={revision}>no value{header.error ? `: ${header.error}` : ''}</div>;
   }
-  if (url) {
-    return <img className="preview-image" src={url} alt={port} data-revision={revision}
-      onLoad={() => noteShown(port, revision)} />;
-  }
+  if (data.bitmap) return <Thumbnail port={port} bitmap={data.bitmap} revision={revision} />;
   const shown = (element) => <div className="preview-value" ref={(e) => e && noteShown(port, revision)}
     data-revision={revision}>{element}</div>;
   if (header.format === 'xyzrgb') return shown(`${Math.floor(data.payload.byteLength / 16)} points`);
@@ -22,6 +19,16 @@ export function Preview({ port, data }) {
   if (value && Array.isArray(value.poses)) return shown(`${value.poses.length} poses`);
   if (value && Array.isArray(value.markers)) return shown(`${value.markers.length} markers`);
   return shown(<pre>{summary(value)}</pre>);
+}
+
+function Thumbnail({ port, bitmap, revision }) {
+  const canvas = useRef(null);
+  useLayoutEffect(() => {
+    canvas.current.getContext('2d').drawImage(bitmap, 0, 0);
+    noteShown(port, revision);
+  }, [bitmap]);
+  return <canvas ref={canvas} className="preview-image" width={bitmap.width} height={bitmap.height}
+    data-revision={revision} title={port} />;
 }
 
 function round(v) {
