@@ -265,14 +265,18 @@ bool DesignerSession::configurationChanged(const NetDocument& previous, const Ne
   return false;
 }
 
-void DesignerSession::apply(NetDocument next, const std::string& merge) {
+void DesignerSession::apply(NetDocument next, const std::string& merge, bool notify) {
   NetDocument previous = doc_;
   install(std::move(next));
   if (merge.empty() || undo_.empty() || undo_.back().merge != merge || !redo_.empty()) {
     undo_.push_back({std::move(previous), merge});
   }
   redo_.clear();
-  changed();
+  if (notify) {
+    changed();
+  } else {
+    ++revision_;  // the caller pushes the state
+  }
 }
 
 void DesignerSession::install(NetDocument next) {
@@ -548,7 +552,8 @@ json DesignerSession::opSetProperty(int, const json& request) {
   } else {
     b.properties.push_back(PropertySetting{property, propertyText(value), SourceLocation{doc_.spec.origin, 0}});
   }
-  apply(std::move(next), "property " + name + "." + property);
+  // With auto_run the state goes out once, after the run, with the new stats.
+  apply(std::move(next), "property " + name + "." + property, !auto_run_);
   json reply = json::object();
   if (auto_run_) reply["run"] = runAndReport(0, "");
   return reply;
@@ -692,8 +697,9 @@ json DesignerSession::runAndReport(int kind, const std::string& block) {
   }
   RunReport report = kind == 0 ? executor_->run() : kind == 1 ? executor_->runAll() : executor_->runBlock(block);
   ++run_count_;
-  out_.broadcast(dump(netState()));  // stats
+  // The new values first: a page shows a preview before it digests the new state.
   sendPortData();
+  out_.broadcast(dump(netState()));  // stats
   json reply = runReport(report);
   std::lock_guard<std::mutex> lock(cached_mutex_);
   reply["cached"] = cached_;
