@@ -68,6 +68,8 @@ struct DesignerServer::Impl : DesignerSession::Output, WebSocketConnection::Hub 
   void accept() {
     acceptor.async_accept([this](beast::error_code ec, tcp::socket socket) {
       if (ec) return;  // stopped
+      // Small frames (a reply, then a preview) must not wait for the previous one's ACK (Nagle).
+      socket.set_option(tcp::no_delay(true), ec);
       auto upgrade = [this](tcp::socket s, http::request<http::string_body> request) {
         auto ws = std::make_shared<WebSocketConnection>(std::move(s), ++next_id, *this);
         ws->accept(std::move(request));

@@ -182,7 +182,13 @@ void DesignerSession::rebuild(const NetDocument& doc) {
   auto net = Net::build(doc.spec);
   auto executor = std::make_unique<Executor>(std::move(net), ExecutorOptions{options_.threads});
   // Run events go to every tab as they happen (observers run on pool threads: broadcast only queues).
-  executor->addObserver([this](const RunEvent& e) { out_.broadcast(dump(eventJson(e))); });
+  executor->addObserver([this](const RunEvent& e) {
+    out_.broadcast(dump(eventJson(e)));
+    if (e.kind == RunEventKind::BlockCached) {
+      std::lock_guard<std::mutex> lock(cached_mutex_);
+      cached_.push_back(e.block);
+    }
+  });
   {
     std::lock_guard<std::mutex> lock(executor_mutex_);
     executor_.swap(executor);
@@ -259,12 +265,18 @@ bool DesignerSession::configurationChanged(const NetDocument& previous, const Ne
   return false;
 }
 
-void DesignerSession::apply(NetDocument next) {
+void DesignerSession::apply(NetDocument next, const std::string& merge, bool notify) {
   NetDocument previous = doc_;
   install(std::move(next));
-  undo_.push_back({std::move(previous)});
+  if (merge.empty() || undo_.empty() || undo_.back().merge != merge || !redo_.empty()) {
+    undo_.push_back({std::move(previous), merge});
+  }
   redo_.clear();
-  changed();
+  if (notify) {
+    changed();
+  } else {
+    ++revision_;  // the caller pushes the state
+  }
 }
 
 void DesignerSession::install(NetDocument next) {
@@ -540,7 +552,8 @@ json DesignerSession::opSetProperty(int, const json& request) {
   } else {
     b.properties.push_back(PropertySetting{property, propertyText(value), SourceLocation{doc_.spec.origin, 0}});
   }
-  apply(std::move(next));
+  // With auto_run the state goes out once, after the run, with the new stats.
+  apply(std::move(next), "property " + name + "." + property, !auto_run_);
   json reply = json::object();
   if (auto_run_) reply["run"] = runAndReport(0, "");
   return reply;
@@ -678,11 +691,19 @@ json DesignerSession::runReport(const RunReport& report) const {
 }
 
 json DesignerSession::runAndReport(int kind, const std::string& block) {
+  {
+    std::lock_guard<std::mutex> lock(cached_mutex_);
+    cached_.clear();
+  }
   RunReport report = kind == 0 ? executor_->run() : kind == 1 ? executor_->runAll() : executor_->runBlock(block);
   ++run_count_;
-  out_.broadcast(dump(netState()));  // stats
+  // The new values first: a page shows a preview before it digests the new state.
   sendPortData();
-  return runReport(report);
+  out_.broadcast(dump(netState()));  // stats
+  json reply = runReport(report);
+  std::lock_guard<std::mutex> lock(cached_mutex_);
+  reply["cached"] = cached_;
+  return reply;
 }
 
 json DesignerSession::opRun(int, const json&) { return runAndReport(0, ""); }
@@ -731,6 +752,8 @@ json DesignerSession::opSave(int, const json& request) {
   saved_text_ = text;
   errors_.clear();
   changed();
+  // Open file dialogs in other tabs list the folder again.
+  out_.broadcast(dump({{"op", "files"}, {"dir", fs::path(target).parent_path().string()}, {"file", target}}));
   return {{"file", target}};
 }
 

@@ -17,6 +17,7 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/image_encodings.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
+#include <visualization_msgs/MarkerArray.h>
 
 namespace imagenets {
 namespace designer {
@@ -123,6 +124,35 @@ nlohmann::json poseJson(const geometry_msgs::Point& p, const geometry_msgs::Quat
   return {{"xyz", {p.x, p.y, p.z}}, {"rpy", {roll, pitch, yaw}}, {"q", {q.x, q.y, q.z, q.w}}};
 }
 
+nlohmann::json xyzJson(double x, double y, double z) { return {{"x", x}, {"y", y}, {"z", z}}; }
+nlohmann::json colorJson(const std_msgs::ColorRGBA& c) { return {{"r", c.r}, {"g", c.g}, {"b", c.b}, {"a", c.a}}; }
+
+// A scene (the Joiner3D's) holds clouds of many thousand points: written directly, not through
+// the printer.
+nlohmann::json markersJson(const visualization_msgs::MarkerArray& array) {
+  nlohmann::json markers = nlohmann::json::array();
+  for (const auto& m : array.markers) {
+    nlohmann::json points = nlohmann::json::array(), colors = nlohmann::json::array();
+    for (const auto& p : m.points) points.push_back(xyzJson(p.x, p.y, p.z));
+    for (const auto& c : m.colors) colors.push_back(colorJson(c));
+    const auto& o = m.pose.orientation;
+    markers.push_back({{"ns", m.ns},
+                       {"id", m.id},
+                       {"type", m.type},
+                       {"action", m.action},
+                       {"frame_id", m.header.frame_id},
+                       {"pose",
+                        {{"position", xyzJson(m.pose.position.x, m.pose.position.y, m.pose.position.z)},
+                         {"orientation", {{"x", o.x}, {"y", o.y}, {"z", o.z}, {"w", o.w}}}}},
+                       {"scale", xyzJson(m.scale.x, m.scale.y, m.scale.z)},
+                       {"color", colorJson(m.color)},
+                       {"points", points},
+                       {"colors", colors},
+                       {"text", m.text}});
+  }
+  return {{"markers", markers}};
+}
+
 }  // namespace
 
 nlohmann::json printedMessageToJson(const std::string& printed) {
@@ -214,6 +244,7 @@ nlohmann::json messageToJson(const Value& value) {
     for (const auto& p : a->poses) poses.push_back(poseJson(p.position, p.orientation));
     return {{"frame_id", a->header.frame_id}, {"poses", poses}};
   }
+  if (type == "visualization_msgs/MarkerArray") return markersJson(*value.as<visualization_msgs::MarkerArray>());
   std::ostringstream printed;
   value.type->printYaml(printed, value);
   return printedMessageToJson(printed.str());
