@@ -25,8 +25,6 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
-
 const json& field(const json& request, const std::string& name) {
   auto it = request.find(name);
   if (it == request.end()) {
@@ -183,7 +181,7 @@ void DesignerSession::rebuild(const NetDocument& doc) {
   auto executor = std::make_unique<Executor>(std::move(net), ExecutorOptions{options_.threads});
   // Run events go to every tab as they happen (observers run on pool threads: broadcast only queues).
   executor->addObserver([this](const RunEvent& e) {
-    out_.broadcast(dump(eventJson(e)));
+    out_.broadcast(jsonText(eventJson(e)));
     if (e.kind == RunEventKind::BlockCached) {
       std::lock_guard<std::mutex> lock(cached_mutex_);
       cached_.push_back(e.block);
@@ -311,7 +309,7 @@ void DesignerSession::install(NetDocument next) {
 
 void DesignerSession::changed() {
   ++revision_;
-  out_.broadcast(dump(netState()));
+  out_.broadcast(jsonText(netState()));
 }
 
 BlockSpec& DesignerSession::block(NetDocument& doc, const std::string& name) const {
@@ -425,11 +423,11 @@ void DesignerSession::handle(int client, const json& request) {
     reply["op"] = "reply";
     reply["id"] = id;
     reply["ok"] = true;
-    out_.send(client, dump(reply));
+    out_.send(client, jsonText(reply));
   } catch (const std::exception& e) {
     json reply = id.is_null() ? json{{"op", "error"}} : json{{"op", "reply"}, {"id", id}, {"ok", false}};
     reply["error"] = e.what();
-    out_.send(client, dump(reply));
+    out_.send(client, jsonText(reply));
   }
 }
 
@@ -699,7 +697,7 @@ json DesignerSession::runAndReport(int kind, const std::string& block) {
   ++run_count_;
   // The new values first: a page shows a preview before it digests the new state.
   sendPortData();
-  out_.broadcast(dump(netState()));  // stats
+  out_.broadcast(jsonText(netState()));  // stats
   json reply = runReport(report);
   std::lock_guard<std::mutex> lock(cached_mutex_);
   reply["cached"] = cached_;
@@ -753,7 +751,7 @@ json DesignerSession::opSave(int, const json& request) {
   errors_.clear();
   changed();
   // Open file dialogs in other tabs list the folder again.
-  out_.broadcast(dump({{"op", "files"}, {"dir", fs::path(target).parent_path().string()}, {"file", target}}));
+  out_.broadcast(jsonText({{"op", "files"}, {"dir", fs::path(target).parent_path().string()}, {"file", target}}));
   return {{"file", target}};
 }
 
