@@ -313,6 +313,7 @@ function Designer() {
         <button data-testid="save-as" onClick={() => setDialog({ kind: 'saveas' })}>Save as</button>
         <span className="sep" />
         <button data-testid="run" title="Ctrl+Enter" onClick={() => run('run')}>▶ Run</button>
+        <button data-testid="run-all" title="run every block, cached or not" onClick={() => run('run_all')}>Run all</button>
         <button data-testid="run-block" disabled={!selectedBlock} onClick={() => run('run_block', { block: selectedBlock.name })}>Run block</button>
         <button data-testid="cancel" disabled={!running.size} onClick={() => attempt('cancel')}>Cancel</button>
         <label title="re-run the changed block and its downstream after each property change">

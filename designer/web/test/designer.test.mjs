@@ -387,3 +387,42 @@ test('files: open, the YAML pane, export; a second tab sees the same net', { tim
   for (const name of ['source', 'gray', 'smooth', 'threshold']) assert.match(svgText, new RegExp(name));
   assert.deepEqual([...page.errors, ...second.errors], []);
 });
+
+test('a running block is highlighted and a long run can be cancelled', { timeout: 300000 }, async (t) => {
+  const dir = tempDir('cancel');
+  const image = path.join(dir, 'big.png');
+  const made = run('convert', ['-size', '1024x768', 'gradient:black-white', image]);
+  assert.equal(made.code, 0, made.out);
+  const net = path.join(dir, 'sweep.yaml');
+  // A feedback sweep over every threshold, one candidate at a time: long enough to be seen running.
+  fs.writeFileSync(net, `blocks:
+  source: {type: imagenets/ImageFileSource, properties: {path: ${image}}}
+  gray: {type: imagenets/Grayscale}
+  threshold:
+    type: imagenets/Threshold
+    feedback: {property: threshold, from: 0, to: 255, step: 1, score: quality.score, goal: maximize, parallel: false}
+  quality: {type: imagenets/SegmentationQuality}
+links:
+  - source.image -> gray.image
+  - gray.image -> threshold.image
+  - gray.image -> quality.gray
+  - threshold.image -> quality.binary
+`);
+  const designer = await startDesigner({ net });
+  t.after(() => designer.stop());
+  const page = await openDesigner(browser, designer.url);
+  await page.waitForSelector(nodeSel('threshold'), { timeout: LONG });
+  // Should a run end before the click lands (a fast machine), the user runs it again.
+  await until('a cancelled run', async () => {
+    await click(page, '[data-testid="run-all"]');
+    await page.waitForSelector('.block-node.running', { timeout: LONG });
+    await click(page, '[data-testid="cancel"]').catch(() => {});
+    const m = await until('the run to end', async () => {
+      const s = await message(page);
+      return /^ran \d+/.test(s.text) ? s.text : null;
+    });
+    return m.includes('cancelled');
+  }, 240000);
+  await until('no block highlighted', async () => !(await page.$('.block-node.running')));
+  assert.deepEqual(page.errors, []);
+});
