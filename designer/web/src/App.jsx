@@ -1,6 +1,7 @@
 import React, { useCallback, useEffect, useMemo, useRef, useState } from 'react';
 import {
   ReactFlow, ReactFlowProvider, Background, Controls, MiniMap, applyNodeChanges, applyEdgeChanges, useReactFlow,
+  useUpdateNodeInternals,
 } from '@xyflow/react';
 import { Connection } from './connection.js';
 import { BlockNode } from './BlockNode.jsx';
@@ -119,6 +120,16 @@ function Designer() {
       store(data);
     }
   };
+
+  // A link to a block that has just appeared may come before the canvas measured the block's
+  // ports; measuring the ends of new links again makes sure every link is drawn.
+  const updateNodeInternals = useUpdateNodeInternals();
+  const drawnLinks = useRef(new Set());
+  useEffect(() => {
+    const fresh = edges.filter((e) => !drawnLinks.current.has(e.id));
+    drawnLinks.current = new Set(edges.map((e) => e.id));
+    if (fresh.length) requestAnimationFrame(() => updateNodeInternals([...new Set(fresh.flatMap((e) => [e.source, e.target]))]));
+  }, [edges]);
 
   // Only ports that still exist are watched (a block may have gone by an edit in any tab).
   const watchedPorts = useMemo(() => JSON.stringify([...watched].filter((key) => {

@@ -61,7 +61,7 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
       failed = true;
       const shot = path.join(dir, 'failed-step.png');
       await page.screenshot({ path: shot }).catch(() => {});
-      throw new Error(`${e.message}\n(page at the failure: ${shot}; message: ${JSON.stringify(await message(page).catch(() => null))})`, { cause: e });
+      throw new Error(`${e.message}\n(page at the failure: ${shot}; message: ${JSON.stringify(await message(page).catch(() => null))}; console: ${page.logs.slice(-10).join(' | ')})`, { cause: e });
     }
   });
   const canvas = await (await page.$('.canvas')).boundingBox();
