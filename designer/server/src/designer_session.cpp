@@ -25,8 +25,6 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
-
 const json& field(const json& request, const std::string& name) {
   auto it = request.find(name);
   if (it == request.end()) {
@@ -183,7 +181,7 @@ void DesignerSession::rebuild(const NetDocument& doc) {
   auto executor = std::make_unique<Executor>(std::move(net), ExecutorOptions{options_.threads});
   // Run events go to every tab as they happen (observers run on pool threads: broadcast only queues).
   executor->addObserver([this](const RunEvent& e) {
-    out_.broadcast(dump(eventJson(e)));
+    out_.broadcast(jsonText(eventJson(e)));
     if (e.kind == RunEventKind::BlockCached) {
       std::lock_guard<std::mutex> lock(cached_mutex_);
       cached_.push_back(e.block);
@@ -265,14 +263,18 @@ bool DesignerSession::configurationChanged(const NetDocument& previous, const Ne
   return false;
 }
 
-void DesignerSession::apply(NetDocument next, const std::string& merge) {
+void DesignerSession::apply(NetDocument next, const std::string& merge, bool notify) {
   NetDocument previous = doc_;
   install(std::move(next));
   if (merge.empty() || undo_.empty() || undo_.back().merge != merge || !redo_.empty()) {
     undo_.push_back({std::move(previous), merge});
   }
   redo_.clear();
-  changed();
+  if (notify) {
+    changed();
+  } else {
+    ++revision_;  // the caller pushes the state
+  }
 }
 
 void DesignerSession::install(NetDocument next) {
@@ -307,7 +309,7 @@ void DesignerSession::install(NetDocument next) {
 
 void DesignerSession::changed() {
   ++revision_;
-  out_.broadcast(dump(netState()));
+  out_.broadcast(jsonText(netState()));
 }
 
 BlockSpec& DesignerSession::block(NetDocument& doc, const std::string& name) const {
@@ -421,11 +423,11 @@ void DesignerSession::handle(int client, const json& request) {
     reply["op"] = "reply";
     reply["id"] = id;
     reply["ok"] = true;
-    out_.send(client, dump(reply));
+    out_.send(client, jsonText(reply));
   } catch (const std::exception& e) {
     json reply = id.is_null() ? json{{"op", "error"}} : json{{"op", "reply"}, {"id", id}, {"ok", false}};
     reply["error"] = e.what();
-    out_.send(client, dump(reply));
+    out_.send(client, jsonText(reply));
   }
 }
 
@@ -548,7 +550,8 @@ json DesignerSession::opSetProperty(int, const json& request) {
   } else {
     b.properties.push_back(PropertySetting{property, propertyText(value), SourceLocation{doc_.spec.origin, 0}});
   }
-  apply(std::move(next), "property " + name + "." + property);
+  // With auto_run the state goes out once, after the run, with the new stats.
+  apply(std::move(next), "property " + name + "." + property, !auto_run_);
   json reply = json::object();
   if (auto_run_) reply["run"] = runAndReport(0, "");
   return reply;
@@ -692,8 +695,9 @@ json DesignerSession::runAndReport(int kind, const std::string& block) {
   }
   RunReport report = kind == 0 ? executor_->run() : kind == 1 ? executor_->runAll() : executor_->runBlock(block);
   ++run_count_;
-  out_.broadcast(dump(netState()));  // stats
+  // The new values first: a page shows a preview before it digests the new state.
   sendPortData();
+  out_.broadcast(jsonText(netState()));  // stats
   json reply = runReport(report);
   std::lock_guard<std::mutex> lock(cached_mutex_);
   reply["cached"] = cached_;
@@ -747,7 +751,7 @@ json DesignerSession::opSave(int, const json& request) {
   errors_.clear();
   changed();
   // Open file dialogs in other tabs list the folder again.
-  out_.broadcast(dump({{"op", "files"}, {"dir", fs::path(target).parent_path().string()}, {"file", target}}));
+  out_.broadcast(jsonText({{"op", "files"}, {"dir", fs::path(target).parent_path().string()}, {"file", target}}));
   return {{"file", target}};
 }
 

@@ -110,7 +110,8 @@ class DesignerSession {
   void install(NetDocument next);
   // install() as one undo step, and the new state to every tab. Consecutive edits with the same
   // non-empty `merge` key (one property dragged along a slider) are one step.
-  void apply(NetDocument next, const std::string& merge = "");
+  // `notify` false: the caller pushes the state later (after an automatic run).
+  void apply(NetDocument next, const std::string& merge = "", bool notify = true);
   void rebuild(const NetDocument& doc);
   // Whether a property change from `previous` to `next` changes a block's configuration (its
   // sub-net, its ports): then the net is built anew instead of setting the property.

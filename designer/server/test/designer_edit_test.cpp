@@ -356,3 +356,29 @@ TEST_F(DesignerTest, YamlTextReplacesTheNetOrIsRefusedWithItsLine) {
   EXPECT_EQ(blockOf(net, "t")["position"], json({5, 6}));
   EXPECT_EQ(net["links"][0]["to"], "t.image");
 }
+
+TEST_F(DesignerTest, ATabThatFallsBehindGetsTheNewestValueNotEveryOne) {
+  start();
+  DesignerClient& editor = connect();
+  DesignerClient& slow = connect();
+  buildChain(editor);
+  expectOk(editor.request({{"op", "run"}}));
+  expectOk(slow.request({{"op", "watch"}, {"ports", {"threshold.image"}}, {"mode", "full"}}));
+  const long first_run = slow.waitForFrame("threshold.image", "full").json["run"];
+  slow.pauseReading();
+  // 40 changes, each a new 786 kB binary image for the slow tab: far more than the socket buffers
+  // hold while it does not read.
+  const int changes = 40;
+  for (int i = 0; i < changes; ++i) {
+    const json reply = editor.request({{"op", "set_property"}, {"block", "threshold"}, {"property", "threshold"}, {"text", 100 + i}});
+    ASSERT_EQ(reply["run"]["ran"], json::array({"threshold"}));
+  }
+  slow.resumeReading();
+  int frames = 0;
+  for (;;) {
+    const DesignerClient::Message m = slow.waitForFrame("threshold.image", "full");
+    ++frames;
+    if (m.json["run"] == first_run + changes) break;  // the newest value, from the last run
+  }
+  EXPECT_LT(frames, changes);
+}
