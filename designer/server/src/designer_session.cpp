@@ -149,6 +149,14 @@ DesignerSession::~DesignerSession() {
 bool DesignerSession::openStartupNet(const std::string& path) {
   const std::string absolute = fs::weakly_canonical(fs::absolute(path)).string();
   roots_.add(fs::path(absolute).parent_path().string());
+  if (!fs::exists(absolute)) {
+    // A new net, saved under that name.
+    file_ = absolute;
+    doc_ = NetDocument::empty(absolute, fs::path(absolute).parent_path().string());
+    rebuild(doc_);
+    saved_text_ = doc_.text();
+    return true;
+  }
   try {
     loadFile(absolute);
     return true;
