@@ -286,6 +286,13 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     assert.match(text, /feedback:/);
     assert.match(text, new RegExp(`score: ${quality}\\.score`));
   });
+  await step('opens the sub-net\'s own file for editing', async () => {
+    await click(page, `${nodeSel(executor)} button[title="open the sub-net"]`);
+    await click(page, '[data-testid="subnet-edit"]');
+    await until('the inner net open', async () =>
+      (await page.$eval('[data-testid="file-name"]', (e) => e.textContent)) === 'segmentation_subnet.yaml');
+    assert.deepEqual((await blockNames(page)).sort(), ['binary', 'blur', 'gray', 'image', 'threshold']);
+  });
   assert.deepEqual(page.errors, []);
 });
 
@@ -321,6 +328,16 @@ test('the 3D view draws the stereo point cloud', { timeout: 300000 }, async (t) 
     return differing > 5000 ? differing : null;
   }));
   assert.ok(drawn > 5000, `${drawn} pixels differ from the background`);
+  await closeDialog(page);
+  // The disparity (32FC1) in the image dialog: a float within the searched range at the centre.
+  await click(page, 'button.open-data[data-port="disparity.disparity"]');
+  const canvas = await page.waitForSelector('.image-canvas[data-scale]', { timeout: LONG });
+  const size = await page.$eval('[data-testid="pixel-readout"]', (r) => r.textContent.match(/^(\d+)x(\d+) (\S+)/).slice(1));
+  assert.equal(size[2], '32FC1');
+  const readout = await readPixel(page, Math.floor(Number(size[0]) / 2), Math.floor(Number(size[1]) / 2));
+  const value = Number(readout.match(/value=(-?[\d.]+)/)[1]);
+  assert.ok(value > 0 && value <= 64, readout);
+  assert.ok(canvas);
   assert.deepEqual(page.errors, []);
 });
 
