@@ -15,7 +15,7 @@ TEST(PluginXml, CommittedFileMatchesTheRegistry) {
   committed << file.rdbuf();
   EXPECT_EQ(committed.str(), imagenets::nodeletPluginXml())
       << "imagenets_plugins.xml is out of date: run\n"
-         "  build/devel/lib/imagenets/imagenets blocks --plugin-xml > imagenets_plugins.xml";
+         "  devel/bin/imagenets blocks --plugin-xml > imagenets_plugins.xml";
 }
 
 TEST(PluginXml, ListsEveryBlockOfTheBlockLibrary) {

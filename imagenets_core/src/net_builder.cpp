@@ -125,6 +125,40 @@ void NetBuilder::linkBlocks() {
   }
 }
 
+void NetBuilder::linkFeedbackInitials() {
+  for (size_t i = 0; i < net_->nodes_.size(); ++i) {
+    const Net::Node& n = net_->nodes_[i];
+    if (!n.feedback) continue;
+    const std::string at = n.feedback->loc.str() + ": block '" + n.name + "': feedback: initial ";
+    for (const FeedbackInitial& init : n.feedback->initial) {
+      if (!init.fromPort()) continue;
+      const int from = net_->findNode(init.block);
+      if (from < 0) {
+        if (!names_.count(init.block)) errors_.push_back(at + init.str() + ": no block named '" + init.block + "'");
+        continue;
+      }
+      const PortSpec* port = net_->nodes_[from].block->findOutput(init.port);
+      if (!port) {
+        errors_.push_back(at + init.str() + ": block '" + init.block + "' has no output port '" + init.port +
+                          "' (outputs: " + portList(net_->nodes_[from].block->outputs()) + ")");
+        continue;
+      }
+      if (port->type->name != "std_msgs/Float64") {
+        errors_.push_back(at + init.str() + " is " + port->type->name + ", not std_msgs/Float64");
+        continue;
+      }
+      const auto below = net_->descendants(static_cast<int>(i));
+      if (from == static_cast<int>(i) || std::find(below.begin(), below.end(), from) != below.end()) {
+        errors_.push_back(at + init.str() + ": block '" + init.block + "' is not upstream of the feedback region of '" +
+                          n.name + "' (it must run before the sweep, outside the region)");
+        continue;
+      }
+      auto& down = net_->nodes_[from].downstream;
+      if (std::find(down.begin(), down.end(), static_cast<int>(i)) == down.end()) down.push_back(static_cast<int>(i));
+    }
+  }
+}
+
 void NetBuilder::orderBlocks() {
   // Event flow needs an acyclic net (feedback is declared on a block, never as a link).
   std::vector<int> indegree(net_->nodes_.size(), 0);
@@ -172,6 +206,14 @@ void NetBuilder::checkFeedback() {
         } catch (const PropertyError& e) {
           errors_.push_back(at + "candidate for '" + f.property + "': " + e.what());
           break;
+        }
+      }
+      for (const FeedbackInitial& init : f.initial) {
+        if (init.fromPort()) continue;
+        try {
+          ps->fromNumber(init.value);
+        } catch (const PropertyError& e) {
+          errors_.push_back(at + "initial " + init.str() + " for '" + f.property + "': " + e.what());
         }
       }
     }

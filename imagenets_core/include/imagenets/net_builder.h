@@ -5,6 +5,7 @@
 //   NetBuilder b(spec);
 //   b.createBlocks();   // types, properties, configure()
 //   b.linkBlocks();     // links resolved and type-checked
+//   b.linkFeedbackInitials();  // `initial: block.port` feeds the tuned block like a link
 //   b.orderBlocks();    // acyclic: the event-flow order
 //   b.checkFeedback();  // feedback declarations against the built net
 //   std::unique_ptr<Net> net = b.finish();  // throws NetError listing every error
@@ -29,6 +30,9 @@ class NetBuilder {
   void createBlocks();
   // Resolves each link to ports of created blocks, checking names and types; one link per input.
   void linkBlocks();
+  // Feedback candidates taken from another block's output (`initial: block.port`): that block must
+  // run before the sweep, so it feeds the tuned block like a link (it joins the dependency order).
+  void linkFeedbackInitials();
   // Orders the blocks for event flow; lists the blocks of a cycle.
   void orderBlocks();
   // Checks each feedback declaration: a numeric property, valid candidates, a Float64 score port
