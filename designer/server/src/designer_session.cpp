@@ -71,6 +71,16 @@ std::string propertyText(const json& v) {
   throw RequestError("a property value is text, a number, a boolean or a list of numbers");
 }
 
+// The optional `properties: {name: text}` of a block in a request.
+std::vector<PropertySetting> propertySettings(const json& item, const SourceLocation& loc) {
+  std::vector<PropertySetting> out;
+  auto it = item.find("properties");
+  if (it == item.end() || it->is_null()) return out;
+  if (!it->is_object()) throw RequestError("'properties' must be {name: text}");
+  for (auto p = it->begin(); p != it->end(); ++p) out.push_back(PropertySetting{p.key(), propertyText(p.value()), loc});
+  return out;
+}
+
 // "ImageFileSource" -> "image_file_source"
 std::string nameFromType(const std::string& type) {
   const std::string base = type.substr(type.rfind('/') == std::string::npos ? 0 : type.rfind('/') + 1);
@@ -149,6 +159,14 @@ DesignerSession::~DesignerSession() {
 bool DesignerSession::openStartupNet(const std::string& path) {
   const std::string absolute = fs::weakly_canonical(fs::absolute(path)).string();
   roots_.add(fs::path(absolute).parent_path().string());
+  if (!fs::exists(absolute)) {
+    // A new net, saved under that name.
+    file_ = absolute;
+    doc_ = NetDocument::empty(absolute, fs::path(absolute).parent_path().string());
+    rebuild(doc_);
+    saved_text_ = doc_.text();
+    return true;
+  }
   try {
     loadFile(absolute);
     return true;
@@ -461,12 +479,7 @@ json DesignerSession::opAddBlock(int, const json& request) {
                                                                    : uniqueName(doc_, nameFromType(b.type));
   b.loc = SourceLocation{doc_.spec.origin, 0};
   // A block that cannot be built with its defaults (a sub-net needs its net) comes with properties.
-  if (request.contains("properties") && !request["properties"].is_null()) {
-    if (!request["properties"].is_object()) throw RequestError("request 'add_block': 'properties' must be {name: text}");
-    for (auto it = request["properties"].begin(); it != request["properties"].end(); ++it) {
-      b.properties.push_back(PropertySetting{it.key(), propertyText(it.value()), b.loc});
-    }
-  }
+  b.properties = propertySettings(request, b.loc);
   if (request.contains("position") && !request["position"].is_null()) {
     next.positions[b.name] = positionOf(request["position"], "add_block");
   }
@@ -607,11 +620,7 @@ json DesignerSession::opPaste(int, const json& request) {
     b.name = names[stringField(item, "name")];
     b.type = stringField(item, "type");
     b.loc = SourceLocation{doc_.spec.origin, 0};
-    if (item.contains("properties") && item["properties"].is_object()) {
-      for (auto it = item["properties"].begin(); it != item["properties"].end(); ++it) {
-        b.properties.push_back(PropertySetting{it.key(), propertyText(it.value()), b.loc});
-      }
-    }
+    b.properties = propertySettings(item, b.loc);
     if (item.contains("position") && !item["position"].is_null()) {
       next.positions[b.name] = positionOf(item["position"], "block '" + b.name + "'");
     }

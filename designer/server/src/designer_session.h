@@ -50,8 +50,9 @@ class DesignerSession {
   DesignerSession(Output& output, Options options);
   ~DesignerSession();
 
-  // Loads the net given on the command line. A net that does not load leaves an empty net with
-  // the errors in the net state (and returns false).
+  // Loads the net given on the command line (a file that does not exist yet: a new net saved
+  // under that name). A net that does not load leaves an empty net with the errors in the net
+  // state (and returns false).
   bool openStartupNet(const std::string& path);
 
   // One request (a JSON object with "op" and "id"); the reply goes to `client`.
