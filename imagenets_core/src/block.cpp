@@ -34,6 +34,16 @@ void Context::setOutput(const std::string& port, const Value& value) {
   throw std::logic_error("block '" + block_name_ + "' has no output port '" + port + "'");
 }
 
+void Context::emit(RunEvent event) const {
+  if (!channel_.emit) return;
+  event.block = event.block.empty() ? block_name_ : block_name_ + "/" + event.block;
+  channel_.emit(event);
+}
+
+RunChannel Context::innerChannel() const {
+  return RunChannel{[this](const RunEvent& e) { emit(e); }, [this] { return cancelled(); }};
+}
+
 const PropertyValue& Context::propertyValue(const std::string& name) const {
   auto it = properties_.find(name);
   if (it == properties_.end()) {

@@ -14,16 +14,6 @@
 
 namespace imagenets {
 
-const char* statusName(BlockStatus status) {
-  switch (status) {
-    case BlockStatus::Pending: return "pending";
-    case BlockStatus::Ok: return "ok";
-    case BlockStatus::Failed: return "failed";
-    case BlockStatus::NotRun: return "not run";
-  }
-  return "?";
-}
-
 Executor::Executor(std::unique_ptr<Net> net, ExecutorOptions options) : net_(std::move(net)) {
   const size_t n = net_->nodes().size();
   int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
@@ -36,6 +26,7 @@ Executor::Executor(std::unique_ptr<Net> net, ExecutorOptions options) : net_(std
     external_inputs_[i].resize(net_->node(i).block->inputs().size());
   }
   out_of_date_.assign(n, true);
+  unfinished_.assign(n, 0);
   stats_.resize(n);
 
   // Feedback regions: the tuned block and every block on a path from it to the score block.
@@ -85,33 +76,105 @@ void Executor::markOutOfDate(int node) {
 }
 
 RunReport Executor::run() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return runOutOfDate();
+  std::unique_lock<std::mutex> lock(mutex_);
+  RunReport report = runOutOfDate();
+  lock.unlock();
+  return finishRun(std::move(report));
 }
 
 RunReport Executor::runBlock(const std::string& block) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   int n = net_->findNode(block);
   if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
   markOutOfDate(n);
-  return runOutOfDate();
+  RunReport report = runOutOfDate();
+  lock.unlock();
+  return finishRun(std::move(report));
 }
 
 RunReport Executor::runAll() {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   out_of_date_.assign(out_of_date_.size(), true);
-  return runOutOfDate();
+  RunReport report = runOutOfDate();
+  lock.unlock();
+  return finishRun(std::move(report));
 }
 
 RunReport Executor::runOutOfDate() {
+  cancel_ = false;
+  running_ = true;
   std::vector<int> nodes;
   for (int n : net_->topologicalOrder()) {
-    if (out_of_date_[n]) nodes.push_back(n);
+    if (out_of_date_[n]) {
+      nodes.push_back(n);
+    } else if (watched()) {
+      emitBlockEvent(RunEventKind::BlockCached, n, statsOf(n));
+    }
   }
   RunReport report;
+  unfinished_.assign(unfinished_.size(), 0);
   execute(nodes, outputs_, report, nullptr);
-  for (int n : nodes) out_of_date_[n] = false;
+  // A cancelled block keeps its previous outputs but stays out of date: the next run resumes.
+  for (int n : nodes) out_of_date_[n] = unfinished_[n] != 0;
+  report.cancelled = std::find(unfinished_.begin(), unfinished_.end(), 1) != unfinished_.end();
   return report;
+}
+
+RunReport Executor::finishRun(RunReport report) {
+  running_ = false;
+  cancel_ = false;
+  RunEvent event;
+  event.kind = RunEventKind::RunFinished;
+  event.message = report.cancelled ? "cancelled" : "";
+  emit(event);
+  return report;
+}
+
+int Executor::addObserver(RunObserver observer) {
+  std::lock_guard<std::mutex> lock(observers_mutex_);
+  observers_[next_observer_] = std::move(observer);
+  observer_count_ = static_cast<int>(observers_.size());
+  return next_observer_++;
+}
+
+void Executor::removeObserver(int id) {
+  std::lock_guard<std::mutex> lock(observers_mutex_);
+  observers_.erase(id);
+  observer_count_ = static_cast<int>(observers_.size());
+}
+
+void Executor::cancel() {
+  if (running_) cancel_ = true;
+}
+
+void Executor::nestIn(RunChannel outer) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  outer_ = std::move(outer);
+}
+
+bool Executor::cancelled() const { return cancel_ || (outer_.cancelled && outer_.cancelled()); }
+
+bool Executor::watched() const { return observer_count_ > 0 || outer_.emit; }
+
+void Executor::emit(const RunEvent& event) {
+  if (!watched()) return;
+  std::vector<RunObserver> observers;
+  {
+    std::lock_guard<std::mutex> lock(observers_mutex_);
+    for (const auto& kv : observers_) observers.push_back(kv.second);
+  }
+  for (const auto& observer : observers) observer(event);
+  // The outer run reports its own end; the inner run's end shows as the block finishing.
+  if (outer_.emit && event.kind != RunEventKind::RunFinished) outer_.emit(event);
+}
+
+void Executor::emitBlockEvent(RunEventKind kind, int node, const BlockStats& stats) {
+  if (!watched()) return;
+  RunEvent event;
+  event.kind = kind;
+  event.block = net_->node(node).name;
+  event.stats = stats;
+  emit(event);
 }
 
 void Executor::setInput(const std::string& block_port, const Value& value) {
@@ -165,11 +228,15 @@ Value Executor::output(const std::string& block_port) const {
 BlockStats Executor::stats(const std::string& block) const {
   int n = net_->findNode(block);
   if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
-  std::lock_guard<std::mutex> lock(stats_mutex_);
-  return stats_[n];
+  return statsOf(n);
 }
 
-void Executor::record(int node, BlockStatus status, const std::string& message, double ms, bool counted) {
+BlockStats Executor::statsOf(int node) const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return stats_[node];
+}
+
+BlockStats Executor::record(int node, BlockStatus status, const std::string& message, double ms, bool counted) {
   std::lock_guard<std::mutex> lock(stats_mutex_);
   BlockStats& s = stats_[node];
   s.status = status;
@@ -179,6 +246,21 @@ void Executor::record(int node, BlockStatus status, const std::string& message, 
     ++s.runs;
     s.last_ms = ms;
     s.mean_ms += (ms - s.mean_ms) / static_cast<double>(s.runs);
+  }
+  return s;
+}
+
+void Executor::finish(int node, BlockStatus status, const std::string& message, double ms, bool counted) {
+  emitBlockEvent(RunEventKind::BlockFinished, node, record(node, status, message, ms, counted));
+}
+
+void Executor::skipCancelled(int unit, RunReport& report) {
+  std::vector<int> members = net_->node(unit).feedback ? feedback_region_[unit] : std::vector<int>{unit};
+  for (int m : members) {
+    unfinished_[m] = 1;
+    finish(m, BlockStatus::NotRun, "cancelled", 0.0, false);
+    std::lock_guard<std::mutex> lock(report_mutex_);
+    report.not_run.push_back(net_->node(m).name + ": cancelled");
   }
 }
 
@@ -197,11 +279,16 @@ std::vector<Value> Executor::gatherInputs(int node, const Store& store, std::str
 
 void Executor::runNode(int node, Store& store, RunReport& report, const Overrides* overrides) {
   Net::Node& n = net_->node(node);
+  const bool trial = overrides != nullptr;  // a feedback trial reports through FeedbackTrial events only
+  auto done = [&](BlockStatus status, const std::string& message, double ms, bool counted) {
+    if (trial) record(node, status, message, ms, counted);
+    else finish(node, status, message, ms, counted);
+  };
   std::string missing;
   std::vector<Value> inputs = gatherInputs(node, store, missing);
   if (!missing.empty()) {
     store[node].assign(n.block->outputs().size(), Value());
-    record(node, BlockStatus::NotRun, missing, 0.0, false);
+    done(BlockStatus::NotRun, missing, 0.0, false);
     std::lock_guard<std::mutex> lock(report_mutex_);
     report.not_run.push_back(n.name + ": " + missing);
     return;
@@ -214,10 +301,20 @@ void Executor::runNode(int node, Store& store, RunReport& report, const Override
     }
   }
   Context ctx(n.name, n.block->inputs(), n.block->outputs(), std::move(inputs), std::move(properties));
+  ctx.setRunChannel(RunChannel{trial ? RunObserver() : [this](const RunEvent& e) { emit(e); },
+                               [this] { return cancelled(); }});
+  if (!trial && watched()) emitBlockEvent(RunEventKind::BlockStarted, node, statsOf(node));
   const auto start = std::chrono::steady_clock::now();
   std::string error;
   try {
     n.block->process(ctx);
+  } catch (const RunCancelled& e) {
+    if (cancelled()) {
+      // Stopped early on cancel: previous outputs kept, out of date (a trial simply gives no score).
+      if (!trial) skipCancelled(node, report);
+      return;
+    }
+    error = "stopped as if cancelled, but the run was not cancelled";
   } catch (const std::exception& e) {
     error = e.what();
   } catch (...) {
@@ -226,14 +323,14 @@ void Executor::runNode(int node, Store& store, RunReport& report, const Override
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (error.empty()) {
     store[node] = std::move(ctx.outputs());
-    record(node, BlockStatus::Ok, "", ms, true);
+    done(BlockStatus::Ok, "", ms, true);
     std::lock_guard<std::mutex> lock(report_mutex_);
     report.ran.push_back(n.name);
   } else {
     store[node].assign(n.block->outputs().size(), Value());
     const std::string type = n.block->info() ? n.block->info()->type : "?";
     const std::string message = "block '" + n.name + "' (" + type + "): " + error;
-    record(node, BlockStatus::Failed, message, ms, true);
+    done(BlockStatus::Failed, message, ms, true);
     std::lock_guard<std::mutex> lock(report_mutex_);
     report.failed.push_back(message);
   }
@@ -268,8 +365,14 @@ void Executor::execute(const std::vector<int>& nodes, Store& store, RunReport& r
   std::vector<int> done;
   auto launch = [&](int u) {
     pool_->post([&, u] {
-      if (!trial && net_->node(u).feedback) runFeedback(u, store, report);
-      else runNode(u, store, report, overrides);
+      // After a cancel nothing starts: the rest of the set is skipped (a trial's blocks silently).
+      if (cancelled()) {
+        if (!trial) skipCancelled(u, report);
+      } else if (!trial && net_->node(u).feedback) {
+        runFeedback(u, store, report);
+      } else {
+        runNode(u, store, report, overrides);
+      }
       std::lock_guard<std::mutex> lock(done_mutex);
       done.push_back(u);
     });
@@ -329,7 +432,7 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
   if (!missing.empty()) {
     for (int m : region) {
       store[m].assign(net_->node(m).block->outputs().size(), Value());
-      record(m, BlockStatus::NotRun, m == node ? missing : "block '" + n.name + "' did not run", 0.0, false);
+      finish(m, BlockStatus::NotRun, m == node ? missing : "block '" + n.name + "' did not run", 0.0, false);
     }
     std::lock_guard<std::mutex> lock(report_mutex_);
     report.not_run.push_back(n.name + ": " + missing);
@@ -347,15 +450,29 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
     if (s == best_score) return i < best;  // ties: the first candidate wins, as in a sequential sweep
     return f.maximize ? s > best_score : s < best_score;
   };
+  for (int m : region) emitBlockEvent(RunEventKind::BlockStarted, m, statsOf(m));
   auto evaluate = [&](int i) {
+    if (cancelled()) return;  // between trials: the sweep stops, the region stays out of date
     Store trial_store;
     double s = runTrial(node, candidates[i], store, trial_store);
-    std::lock_guard<std::mutex> lock(best_mutex);
-    scores[i] = s;
-    if (better(s, i, best >= 0 ? scores[best] : 0.0)) {
-      best = i;
-      best_store = std::move(trial_store);
+    if (cancelled()) return;  // the trial may have been cut short: its score does not count
+    RunEvent event;
+    event.kind = RunEventKind::FeedbackTrial;
+    event.block = n.name;
+    event.message = f.property;
+    event.value = candidates[i];
+    event.score = s;
+    event.count = count;
+    {
+      std::lock_guard<std::mutex> lock(best_mutex);
+      scores[i] = s;
+      event.index = static_cast<int>(scores.size());
+      if (better(s, i, best >= 0 ? scores[best] : 0.0)) {
+        best = i;
+        best_store = std::move(trial_store);
+      }
     }
+    emit(event);
   };
   auto evaluateAll = [&](std::vector<int> indices) {
     indices.erase(std::remove_if(indices.begin(), indices.end(),
@@ -407,6 +524,11 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
     evaluateAll(all);
   }
 
+  if (cancelled()) {
+    skipCancelled(node, report);
+    return;
+  }
+
   // The trace: every evaluated (value, score), the chosen value.
   auto trace = boost::make_shared<FeedbackTrace>();
   trace->block = n.name;
@@ -431,9 +553,9 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
                           "' produced a score at " + trace->score;
     for (int m : region) store[m].assign(net_->node(m).block->outputs().size(), Value());
     store[node][trace_port] = PortType::of<FeedbackTrace>().wrap<FeedbackTrace>(trace);
-    record(node, BlockStatus::Failed, message, 0.0, false);
+    finish(node, BlockStatus::Failed, message, 0.0, false);
     for (int m : region) {
-      if (m != node) record(m, BlockStatus::NotRun, "feedback of '" + n.name + "' found no valid candidate", 0.0, false);
+      if (m != node) finish(m, BlockStatus::NotRun, "feedback of '" + n.name + "' found no valid candidate", 0.0, false);
     }
     std::lock_guard<std::mutex> lock(report_mutex_);
     report.failed.push_back(message);
@@ -441,7 +563,7 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
   }
   for (int m : region) store[m] = best_store[m];
   store[node][trace_port] = PortType::of<FeedbackTrace>().wrap<FeedbackTrace>(trace);
-  for (int m : region) record(m, BlockStatus::Ok, "", 0.0, false);
+  for (int m : region) finish(m, BlockStatus::Ok, "", 0.0, false);
   std::lock_guard<std::mutex> lock(report_mutex_);
   for (int m : region) report.ran.push_back(net_->node(m).name);
 }

@@ -197,8 +197,9 @@ NetSpec parseNetText(const std::string& yaml, const std::string& origin, const s
   if (!root.IsMap()) throw NetError({origin + ": a net is a YAML map with 'blocks' and 'links'"});
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
-    if (key != "blocks" && key != "links" && key != "doc") {
-      p.error(kv.first, "unknown key '" + key + "' (a net has blocks, links and doc)");
+    // `designer:` holds what an editor keeps beside the net (block positions); the engine ignores it.
+    if (key != "blocks" && key != "links" && key != "doc" && key != "designer") {
+      p.error(kv.first, "unknown key '" + key + "' (a net has blocks, links, doc and designer)");
     }
   }
   const YAML::Node blocks = root["blocks"];

@@ -26,15 +26,9 @@ int run(const Args& args) {
   if (format == "dot") {
     std::ofstream(out) << dot;
   } else {
+    const std::string picture = renderDot(dot, format);
     const std::string tmp = out + ".tmp";
-    const std::string cmd = "dot -T" + format + " -o '" + tmp + "'";
-    FILE* pipe = popen(cmd.c_str(), "w");
-    if (!pipe) throw std::runtime_error("cannot run Graphviz 'dot' (apt-get install graphviz)");
-    fwrite(dot.data(), 1, dot.size(), pipe);
-    if (pclose(pipe) != 0) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error("Graphviz 'dot -T" + format + "' failed");
-    }
+    std::ofstream(tmp, std::ios::binary) << picture;
     std::rename(tmp.c_str(), out.c_str());
   }
   std::cout << "wrote " << out << "\n";

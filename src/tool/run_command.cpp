@@ -1,8 +1,10 @@
-// `imagenets run NET [--set block.property=value ...] [--output-dir DIR] [--threads N]`: runs a
-// net, writes every output port (images as PNG, the rest as YAML) and prints per-block timings.
+// `imagenets run NET [--set block.property=value ...] [--output-dir DIR] [--threads N] [--quiet]
+// [--trials]`: runs a net, prints a progress line per block as it finishes (from the run events, on
+// stderr), writes every output port (images as PNG, the rest as YAML) and prints per-block timings.
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
+#include <mutex>
 
 #include <boost/filesystem.hpp>
 
@@ -14,12 +16,33 @@ namespace imagenets {
 namespace tool {
 namespace {
 
+// Progress lines: "[k/N] block: status (ms)" for the net's own blocks, indented lines for blocks
+// inside sub-nets ("sub/inner") and sub-net repetitions; feedback trials with `trials`.
+RunObserver progressPrinter(const Net& net, bool trials) {
+  auto mutex = std::make_shared<std::mutex>();
+  auto finished = std::make_shared<size_t>(0);
+  const size_t total = net.nodes().size();
+  return [=](const RunEvent& e) {
+    const bool block_done = e.kind == RunEventKind::BlockFinished || e.kind == RunEventKind::BlockCached;
+    if (!block_done && e.kind != RunEventKind::Repetition && !(trials && e.kind == RunEventKind::FeedbackTrial)) return;
+    std::lock_guard<std::mutex> lock(*mutex);
+    if (block_done && e.block.find('/') == std::string::npos) {
+      std::cerr << "[" << ++*finished << "/" << total << "] " << describe(e) << "\n";
+    } else {
+      std::cerr << "      " << describe(e) << "\n";
+    }
+  };
+}
+
 int run(const Args& args) {
   std::string net_path, output_dir;
   std::vector<std::string> sets;
   ExecutorOptions options;
+  bool quiet = false, trials = false;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--set") sets.push_back(flagValue(args, i));
+    else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
+    else if (args[i] == "--trials") trials = true;
     else if (args[i] == "--output-dir" || args[i] == "-o") output_dir = flagValue(args, i);
     else if (args[i] == "--threads") options.threads = std::stoi(flagValue(args, i));
     else if (!args[i].empty() && args[i][0] == '-') throw UsageError("unknown option '" + args[i] + "'");
@@ -36,6 +59,7 @@ int run(const Args& args) {
     }
     executor.setPropertyText(s.substr(0, dot), s.substr(dot + 1, eq - dot - 1), s.substr(eq + 1));
   }
+  if (!quiet) executor.addObserver(progressPrinter(executor.net(), trials));
   const RunReport report = executor.run();
 
   std::cout << "net " << net_path << ": " << report.ran.size() << " blocks ran, " << report.failed.size()
@@ -69,8 +93,11 @@ int run(const Args& args) {
 
 }  // namespace
 
-IMAGENETS_TOOL_COMMAND(run, "run", "run NET [--set block.property=value ...] [--output-dir DIR] [--threads N]",
-                       "run a net; write its outputs (images as PNG, others as YAML); print timings", run);
+IMAGENETS_TOOL_COMMAND(run, "run",
+                       "run NET [--set block.property=value ...] [--output-dir DIR] [--threads N] [--quiet] [--trials]",
+                       "run a net, showing progress (--trials: every feedback trial); write its outputs (images as "
+                       "PNG, others as YAML); print timings",
+                       run);
 
 }  // namespace tool
 }  // namespace imagenets

@@ -10,6 +10,7 @@
 
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
+#include <imagenets/BlockNodeletStatus.h>
 #include <opencv2/imgcodecs.hpp>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
@@ -154,6 +155,16 @@ TEST(ExecutorNodelet, InternalPortsArePublishedWhileSubscribed) {
   auto image = gray.get(5.0);
   ASSERT_TRUE(image) << "nothing on ~internal/gray/image";
   expectSameMono8(*image, cv::imread(toolOutputDir() + "/gray.image.png", cv::IMREAD_UNCHANGED), "internal gray");
+}
+
+// The inner net's run events reach ~status while it runs; after the run, the last one is the
+// sub-net's repetition (1 of 1).
+TEST(ExecutorNodelet, StatusShowsTheInnerRunsProgress) {
+  LatestMessage<imagenets::BlockNodeletStatus> status("exec_file/status");
+  ASSERT_TRUE(waitFor([&] { auto s = status.get(); return s && s->runs >= 1; }, 15.0)) << "no ~status after a run";
+  auto s = status.get();
+  EXPECT_EQ(s->status, "ok");
+  EXPECT_EQ(s->progress, "repetition 1 of 1 done");
 }
 
 }  // namespace

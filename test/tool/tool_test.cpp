@@ -96,6 +96,9 @@ TEST(Tool, RunWritesOutputsAndTimings) {
   ASSERT_EQ(r.status, 0) << r.output;
   expectContains(r.output, "4 blocks ran, 0 failed");
   expectContains(r.output, "threshold               ok             1");
+  // Progress lines from the run events, one per block as it finishes.
+  expectContains(r.output, "[4/4] ");
+  expectContains(r.output, "] threshold: ok (");
   EXPECT_TRUE(boost::filesystem::exists(dir + "/threshold.image.png"));
   EXPECT_TRUE(boost::filesystem::exists(dir + "/gray.image.png"));
   // A bad --set is named and nothing runs.
@@ -106,8 +109,9 @@ TEST(Tool, RunWritesOutputsAndTimings) {
 
 TEST(Tool, RunWritesTheFeedbackTrace) {
   const std::string dir = temp("fb_out");
-  Result r = tool("run config/nets/feedback_threshold.yaml --output-dir " + dir);
+  Result r = tool("run config/nets/feedback_threshold.yaml --trials --output-dir " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "threshold: feedback trial 41 of 41: threshold = ");
   std::ifstream in(dir + "/threshold.feedback_trace.yaml");
   std::stringstream ss;
   ss << in.rdbuf();

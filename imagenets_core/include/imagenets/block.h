@@ -23,6 +23,7 @@
 
 #include "imagenets/port_type.h"
 #include "imagenets/property.h"
+#include "imagenets/run_events.h"
 
 namespace imagenets {
 
@@ -71,6 +72,16 @@ class Context {
   const PropertyValue& propertyValue(const std::string& name) const;
   const PropertyValues& properties() const { return properties_; }
 
+  // For a block that runs something inside (a sub-net): emit() passes that run's events to whoever
+  // watches this run, with this block's name prefixed to the event's block path ("outer/inner");
+  // cancelled() says the run was cancelled, and the block then stops early by throwing RunCancelled.
+  void emit(RunEvent event) const;
+  bool cancelled() const { return channel_.cancelled && channel_.cancelled(); }
+  void setRunChannel(RunChannel channel) { channel_ = std::move(channel); }
+  // The channel to hand to what runs inside (Executor::nestIn): its events reach this run's
+  // watchers under this block's path, and this run's cancel reaches it.
+  RunChannel innerChannel() const;
+
   std::vector<Value>& outputs() { return output_values_; }
 
  private:
@@ -80,11 +91,18 @@ class Context {
   std::vector<Value> input_values_;
   std::vector<Value> output_values_;
   PropertyValues properties_;
+  RunChannel channel_;
 };
 
 // An error a block reports about its input or configuration; the executor prefixes the block.
 struct BlockError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// Thrown by a block that stopped early because ctx.cancelled(): the block is NotRun ("cancelled")
+// and stays out of date, not failed.
+struct RunCancelled : std::runtime_error {
+  RunCancelled() : std::runtime_error("cancelled") {}
 };
 
 struct BlockInfo;

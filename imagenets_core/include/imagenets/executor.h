@@ -9,6 +9,7 @@
 //   exec->run();  // re-runs `threshold` and what is downstream of it, nothing else
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <functional>
@@ -84,6 +85,10 @@ class Executor {
   // stay out of date, so the next run() continues where this one stopped; the run returns a report
   // with `cancelled` set. The executor stays usable.
   void cancel();
+  // Makes this executor's runs part of an outer run, until called again with an empty channel:
+  // its events (but RunFinished) also go to `outer.emit`, and `outer.cancelled` cancels it too. A
+  // block that runs a net inside passes its Context's innerChannel() for the length of process().
+  void nestIn(RunChannel outer);
 
  private:
   using Store = std::vector<std::vector<Value>>;        // per node, per output port
@@ -101,7 +106,19 @@ class Executor {
   void runFeedback(int node, Store& store, RunReport& report);
   double runTrial(int node, double candidate, const Store& base, Store& trial_store);
   std::vector<Value> gatherInputs(int node, const Store& store, std::string& missing) const;
-  void record(int node, BlockStatus status, const std::string& message, double ms, bool counted);
+  BlockStats statsOf(int node) const;
+  // Records a block's status; `counted` adds a process() call to its timings. Returns the stats.
+  BlockStats record(int node, BlockStatus status, const std::string& message, double ms, bool counted);
+  // record() + a BlockFinished event.
+  void finish(int node, BlockStatus status, const std::string& message, double ms, bool counted);
+  // A unit (a block, or a feedback block with its region) that a cancel kept from starting.
+  void skipCancelled(int unit, RunReport& report);
+  bool cancelled() const;
+  bool watched() const;  // someone listens to events (else they are not even built)
+  void emit(const RunEvent& event);
+  void emitBlockEvent(RunEventKind kind, int node, const BlockStats& stats);
+  // Ends a public run: clears the running state and tells the observers (outside mutex_).
+  RunReport finishRun(RunReport report);
 
   std::unique_ptr<Net> net_;
   std::unique_ptr<ThreadPool> pool_;
@@ -114,6 +131,15 @@ class Executor {
   mutable std::mutex stats_mutex_;
   std::vector<BlockStats> stats_;
   std::mutex report_mutex_;
+
+  std::mutex observers_mutex_;
+  std::map<int, RunObserver> observers_;
+  int next_observer_ = 0;
+  std::atomic<int> observer_count_{0};
+  RunChannel outer_;                  // set by nestIn(), read during runs (mutex_ held)
+  std::atomic<bool> running_{false};
+  std::atomic<bool> cancel_{false};
+  std::vector<char> unfinished_;      // per node: cancelled in the current run (stays out of date)
 };
 
 }  // namespace imagenets

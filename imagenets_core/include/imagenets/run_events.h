@@ -53,8 +53,19 @@ struct RunEvent {
   int count = 0;  // FeedbackTrial: the number of candidates; Repetition: N
 };
 
+// One line for people: "threshold: ok (1.234 ms)", "loop: repetition 2 of 5 done",
+// "threshold: feedback trial 3 of 41: threshold = 90 -> score 0.75".
+std::string describe(const RunEvent& event);
+
 // Called on the thread that produced the event (a pool thread, possibly several at once): an
 // observer must be thread-safe and quick, and must not call back into the executor that sends it.
 using RunObserver = std::function<void(const RunEvent&)>;
+
+// What a run offers the blocks it runs (through their Context): where their own events go and
+// whether the run was cancelled. Either part may be empty (nobody listens / cannot be cancelled).
+struct RunChannel {
+  RunObserver emit;
+  std::function<bool()> cancelled;
+};
 
 }  // namespace imagenets

@@ -123,14 +123,25 @@ class SubNet : public Block, public SubNetAccess {
     if (!executor_) throw BlockError("no sub-net loaded");
     // One sub-net instance: concurrent calls (feedback trials) take turns.
     std::lock_guard<std::mutex> lock(run_mutex_);
+    // The inner run's events reach the outer watchers as "<this block>/<inner block>"; the outer
+    // cancel stops the inner run.
+    Nesting nesting(*executor_, ctx.innerChannel());
     for (const auto& in : inputs_) executor_->setInput(in.inner, ctx.inputValue(in.port));
     const int repeat = ctx.property<int>("repeat");
     std::vector<std::vector<Value>> results(outputs_.size());
     std::string first_failure;
     int failures = 0;
     for (int i = 0; i < repeat; ++i) {
+      if (ctx.cancelled()) throw RunCancelled();
       // Every repetition re-runs the whole sub-net (sources included: a fresh image, a new move).
       RunReport report = repeat == 1 ? executor_->run() : executor_->runAll();
+      if (report.cancelled) throw RunCancelled();
+      RunEvent done;
+      done.kind = RunEventKind::Repetition;
+      done.index = i + 1;
+      done.count = repeat;
+      if (!report.failed.empty()) done.message = "failed: " + report.failed.front();
+      ctx.emit(done);
       if (!report.failed.empty()) {
         // Its outputs may still hold the previous repetition's values: none of them is taken.
         if (++failures == 1) first_failure = "repetition " + std::to_string(i + 1) + ": " + report.failed.front();
@@ -157,6 +168,12 @@ class SubNet : public Block, public SubNetAccess {
   const Executor* subExecutor() const override { return executor_.get(); }
 
  private:
+  // Nests the inner executor in the current outer run for the length of one process() call.
+  struct Nesting {
+    Nesting(Executor& inner, RunChannel outer) : inner(inner) { inner.nestIn(std::move(outer)); }
+    ~Nesting() { inner.nestIn({}); }
+    Executor& inner;
+  };
   struct InPort {
     std::string port, inner;
   };

@@ -247,6 +247,10 @@ class BlockHost {
   std::string runLocked() {
     if (pairing_->isSource()) cached_inputs_ = pairing_->latest();
     Context ctx(name_, block_->inputs(), block_->outputs(), cached_inputs_, block_->propertyValues());
+    // What runs inside the block (a sub-net) reports on ~status while it runs.
+    ctx.setRunChannel(RunChannel{[this](const RunEvent& e) { onInnerEvent(e); }, {}});
+    status_ = "running";
+    progress_.clear();
     std::string error;
     const auto start = std::chrono::steady_clock::now();
     try {
@@ -258,6 +262,7 @@ class BlockHost {
     ++runs_;
     total_ms_ += ms;
     last_ms_ = ms;
+    status_ = error.empty() ? "ok" : "failed";
     if (!error.empty()) {
       ++failures_;
       last_error_ = error;
@@ -271,6 +276,15 @@ class BlockHost {
     publishInternalPorts();
     publishStatus();
     return error;
+  }
+
+  // An event from inside the block, on the thread running it (mutex_ is held by runLocked).
+  void onInnerEvent(RunEvent e) {
+    if (e.kind == RunEventKind::BlockStarted || e.kind == RunEventKind::RunFinished) return;
+    // "<nodelet>/<inner block>" -> "<inner block>"; the block's own events (repetitions) lose the name.
+    e.block = e.block.size() > name_.size() ? e.block.substr(name_.size() + 1) : std::string();
+    progress_ = imagenets::describe(e);
+    publishStatus();
   }
 
   // publish_internal_ports: every inner output port becomes a topic; a value is published only
@@ -418,6 +432,8 @@ class BlockHost {
     s->last_ms = last_ms_;
     s->mean_ms = runs_ ? total_ms_ / static_cast<double>(runs_) : 0.0;
     s->last_error = last_error_;
+    s->status = status_;
+    s->progress = progress_;
     status_pub_.publish(s);
   }
 
@@ -452,6 +468,7 @@ class BlockHost {
   uint64_t runs_ = 0, failures_ = 0;
   double last_ms_ = 0.0, total_ms_ = 0.0;
   std::string last_error_;
+  std::string status_ = "pending", progress_;
 };
 
 BlockNodeletBase::BlockNodeletBase() = default;

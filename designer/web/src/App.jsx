@@ -1,0 +1,334 @@
+import React, { useCallback, useEffect, useMemo, useRef, useState } from 'react';
+import {
+  ReactFlow, ReactFlowProvider, Background, Controls, MiniMap, applyNodeChanges, applyEdgeChanges, useReactFlow,
+} from '@xyflow/react';
+import { Connection } from './connection.js';
+import { BlockNode } from './BlockNode.jsx';
+import { BlockBrowser } from './BlockBrowser.jsx';
+import { PropertiesPanel } from './PropertiesPanel.jsx';
+import { BlockSearch, ExportDialog, FileDialog } from './Dialogs.jsx';
+import { DataDialog } from './DataDialog.jsx';
+import { SubnetView } from './SubnetView.jsx';
+import { YamlPane } from './YamlPane.jsx';
+import { layeredLayout } from './layout.js';
+import { flowFromNet, split } from './flow.js';
+
+const nodeTypes = { block: BlockNode };
+
+export function App() {
+  return <ReactFlowProvider><Designer /></ReactFlowProvider>;
+}
+
+function Designer() {
+  const flow = useReactFlow();
+  const conn = useMemo(() => new Connection(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`), []);
+  const request = useCallback((op, args) => conn.request(op, args), [conn]);
+  const [registry, setRegistry] = useState(null);
+  const [net, setNet] = useState(null);
+  const [nodes, setNodes] = useState([]);
+  const [edges, setEdges] = useState([]);
+  const [running, setRunning] = useState(new Set());
+  const [cached, setCached] = useState(new Set());
+  const [previews, setPreviews] = useState({});
+  const [watched, setWatched] = useState(new Set());
+  const [message, setMessage] = useState(null); // {text, error}
+  const [search, setSearch] = useState(null); // {at, flowAt, inputType, from}
+  const [dataPort, setDataPort] = useState(null); // {port, type}
+  const [fullData, setFullData] = useState(null);
+  const [dialog, setDialog] = useState(null);
+  const [subnet, setSubnet] = useState(null);
+  const [autoRun, setAutoRun] = useState(true);
+  const [showYaml, setShowYaml] = useState(true);
+  const [ghost, setGhost] = useState(null);
+  const [connected, setConnected] = useState(false);
+  const wrapper = useRef(null);
+  const clipboard = useRef(null);
+  const colors = registry?.types || {};
+
+  const say = (text, error = false) => setMessage({ text, error, at: Date.now() });
+  const attempt = async (op, args) => {
+    try { return await request(op, args); } catch (err) { say(err.message, true); return null; }
+  };
+
+  const colorsRef = useRef({});
+  const flowRef = useRef({ nodes, edges });
+  flowRef.current = { nodes, edges };
+  const applyNet = useCallback((state) => {
+    setNet(state);
+    const built = flowFromNet(state, colorsRef.current, flowRef.current.nodes, flowRef.current.edges);
+    flowRef.current = built;
+    setNodes(built.nodes);
+    setEdges(built.edges);
+  }, []);
+  colorsRef.current = colors;
+
+  useEffect(() => {
+    const offs = [
+      conn.on('net', applyNet),
+      conn.on('event', (e) => onEvent(e)),
+      conn.on('error', (e) => say(e.error, true)),
+      conn.on('closed', () => { setConnected(false); say('connection to the designer closed', true); }),
+      conn.on('data', onData),
+    ];
+    conn.request('hello').then((reply) => {
+      setRegistry(reply.registry);
+      colorsRef.current = reply.registry.types;
+      applyNet(reply.net);
+      setConnected(true);
+      conn.request('auto_run', { on: true });
+      setTimeout(() => flow.fitView({ padding: 0.1 }), 50);
+    }).catch((err) => say(err.message, true));
+    return () => offs.forEach((off) => off());
+  }, [conn]);
+
+  const onEvent = (e) => {
+    if (!e.block || e.block.includes('/')) {
+      if (e.kind === 'run_finished') setRunning(new Set());
+      return;
+    }
+    if (e.kind === 'started') {
+      setRunning((s) => new Set(s).add(e.block));
+      setCached((s) => { const n = new Set(s); n.delete(e.block); return n; });
+    } else if (e.kind === 'finished' || e.kind === 'cached') {
+      setRunning((s) => { const n = new Set(s); n.delete(e.block); return n; });
+      if (e.kind === 'cached') setCached((s) => new Set(s).add(e.block));
+    }
+    if (e.stats) {
+      setNet((n) => n && { ...n, blocks: n.blocks.map((b) => (b.name === e.block ? { ...b, stats: { ...b.stats, ...e.stats } } : b)) });
+    }
+  };
+
+  const onData = ({ header, payload }) => {
+    const data = { header, payload, value: header.value };
+    if (header.mode === 'full') {
+      setFullData((old) => (old && old.header.port !== header.port ? old : data));
+      return;
+    }
+    if (header.format === 'jpeg' || header.format === 'png') {
+      data.url = URL.createObjectURL(new Blob([payload], { type: `image/${header.format}` }));
+    }
+    setPreviews((p) => {
+      if (p[header.port]?.url) setTimeout(() => URL.revokeObjectURL(p[header.port].url), 1000);
+      return { ...p, [header.port]: data };
+    });
+  };
+
+  useEffect(() => { if (connected) attempt('watch', { ports: [...watched], mode: 'preview' }); }, [watched, connected]);
+  useEffect(() => {
+    if (!connected) return;
+    setFullData(null);
+    attempt('watch', { ports: dataPort ? [dataPort.port] : [], mode: 'full' });
+  }, [dataPort, connected]);
+
+  const actions = useMemo(() => ({
+    toggleWatch: (key) => setWatched((w) => { const n = new Set(w); if (n.has(key)) n.delete(key); else n.add(key); return n; }),
+    openData: (port, type) => setDataPort({ port, type }),
+    openSubnet: async (block) => {
+      const state = await attempt('subnet', { block });
+      if (state) setSubnet({ block, state: state.net || state });
+    },
+  }), []);
+
+  const shownNodes = useMemo(() => nodes.map((n) => {
+    const block = net?.blocks.find((b) => b.name === n.id);
+    return block ? { ...n, data: { block, colors, running: running.has(n.id), cached: cached.has(n.id), previews, watched, actions } } : n;
+  }).filter((n) => n.data.block), [nodes, net, colors, running, cached, previews, watched, actions]);
+
+  // --- edits -----------------------------------------------------------------------------------
+  const run = async (op, args) => {
+    say(`${op.replace('_', ' ')}…`);
+    const r = await attempt(op, args);
+    if (r) say(`ran ${r.ran.length}, failed ${r.failed.length}, not run ${r.not_run.length}${r.cancelled ? ', cancelled' : ''}`, r.failed.length > 0);
+    setRunning(new Set());
+  };
+  const selectedNames = () => nodes.filter((n) => n.selected).map((n) => n.id);
+  const addBlock = async (type, position) => {
+    const r = await attempt('add_block', { type, position: [Math.round(position.x), Math.round(position.y)] });
+    return r?.name;
+  };
+  const removeSelected = async () => {
+    const names = selectedNames();
+    if (names.length) await attempt('remove_blocks', { names });
+    for (const e of edges.filter((x) => x.selected && !names.includes(x.source) && !names.includes(x.target))) {
+      await attempt('remove_link', { from: e.data.from, to: e.data.to });
+    }
+  };
+  const copy = () => {
+    const names = new Set(selectedNames());
+    if (!names.size) return;
+    clipboard.current = {
+      blocks: net.blocks.filter((b) => names.has(b.name)).map((b) => {
+        const n = nodes.find((x) => x.id === b.name);
+        return { name: b.name, type: b.type, properties: b.properties, feedback: b.feedback,
+          position: [Math.round(n.position.x), Math.round(n.position.y)] };
+      }),
+      links: net.links.filter((l) => names.has(split(l.from)[0]) && names.has(split(l.to)[0])).map(({ from, to }) => ({ from, to })),
+    };
+    say(`copied ${names.size} blocks`);
+  };
+  const paste = async () => {
+    if (!clipboard.current) return;
+    const c = clipboard.current;
+    const blocks = c.blocks.map((b) => ({ ...b, position: [b.position[0] + 40, b.position[1] + 40] }));
+    clipboard.current = { ...c, blocks };
+    const r = await attempt('paste', { blocks, links: c.links });
+    if (r) {
+      const names = new Set(Object.values(r.names || {}).concat(Array.isArray(r.names) ? r.names : []));
+      setNodes((ns) => ns.map((n) => ({ ...n, selected: names.has(n.id) })));
+    }
+  };
+  const autoLayout = () => {
+    const positions = layeredLayout(net.blocks, net.links);
+    attempt('move_blocks', { positions }).then(() => setTimeout(() => flow.fitView({ padding: 0.1 }), 50));
+  };
+  const save = async (path) => {
+    const r = await request('save', path ? { path } : {});
+    say(`saved ${r.file || path || net.file}`);
+  };
+  const exportLaunch = async () => {
+    const r = await attempt('export_launch');
+    if (r) setDialog({ kind: 'export', title: 'launch file', text: r.text, fileName: 'net.launch' });
+  };
+  const exportGraph = async () => {
+    const r = await attempt('export_graph', { expand: true });
+    if (r) setDialog({ kind: 'export', title: 'Graphviz picture', svg: r.svg, fileName: 'net.svg' });
+  };
+
+  // --- keyboard --------------------------------------------------------------------------------
+  const keys = useRef();
+  keys.current = (e) => {
+    const inField = ['INPUT', 'TEXTAREA', 'SELECT'].includes(e.target.tagName);
+    const ctrl = e.ctrlKey || e.metaKey;
+    if (ctrl && e.key === 'Enter' && e.target.tagName !== 'TEXTAREA') { e.preventDefault(); run('run'); return; }
+    if (ctrl && e.key.toLowerCase() === 's') { e.preventDefault(); if (net.file) save().catch((err) => say(err.message, true)); else setDialog({ kind: 'saveas' }); return; }
+    if (inField || !net) return;
+    if (ctrl && e.key.toLowerCase() === 'z' && !e.shiftKey) { e.preventDefault(); attempt('undo'); }
+    else if (ctrl && (e.key.toLowerCase() === 'y' || (e.key.toLowerCase() === 'z' && e.shiftKey))) { e.preventDefault(); attempt('redo'); }
+    else if (ctrl && e.key.toLowerCase() === 'c') copy();
+    else if (ctrl && e.key.toLowerCase() === 'v') paste();
+    else if (e.key === 'Delete' || e.key === 'Backspace') removeSelected();
+  };
+  useEffect(() => {
+    const handler = (e) => keys.current(e);
+    window.addEventListener('keydown', handler);
+    return () => window.removeEventListener('keydown', handler);
+  }, []);
+
+  // --- dragging a block from the browser (pointer events, so it works everywhere) --------------
+  const startDrag = (type, down, onClick) => {
+    down.preventDefault();
+    let moved = false;
+    const move = (e) => {
+      if (!moved && Math.hypot(e.clientX - down.clientX, e.clientY - down.clientY) < 5) return;
+      moved = true;
+      setGhost({ type, x: e.clientX, y: e.clientY });
+    };
+    const up = (e) => {
+      window.removeEventListener('mousemove', move);
+      window.removeEventListener('mouseup', up);
+      setGhost(null);
+      if (!moved) { onClick(); return; }
+      const r = wrapper.current.getBoundingClientRect();
+      if (e.clientX >= r.left && e.clientX <= r.right && e.clientY >= r.top && e.clientY <= r.bottom) {
+        addBlock(type, flow.screenToFlowPosition({ x: e.clientX, y: e.clientY }));
+      }
+    };
+    window.addEventListener('mousemove', move);
+    window.addEventListener('mouseup', up);
+  };
+
+  const openSearch = (clientX, clientY, inputType = null, from = null) => {
+    const r = wrapper.current.getBoundingClientRect();
+    setSearch({ at: { x: clientX - r.left, y: clientY - r.top }, flowAt: flow.screenToFlowPosition({ x: clientX, y: clientY }), inputType, from });
+  };
+  const pickSearch = async (type) => {
+    const s = search;
+    setSearch(null);
+    const name = await addBlock(type, s.flowAt);
+    if (name && s.from) {
+      const input = registry.blocks.find((b) => b.type === type).inputs.find((p) => p.type === s.inputType);
+      if (input) await attempt('add_link', { from: s.from, to: `${name}.${input.name}` });
+    }
+  };
+
+  if (!registry || !net) {
+    return <div className="loading">{message ? message.text : 'connecting to the designer…'}</div>;
+  }
+  const selected = nodes.filter((n) => n.selected);
+  const selectedBlock = selected.length === 1 ? net.blocks.find((b) => b.name === selected[0].id) : null;
+  const fileName = net.file ? net.file.split('/').pop() : 'untitled net';
+  return (
+    <div className="designer">
+      <div className="toolbar">
+        <span className="title" data-testid="file-name" title={net.file || ''}>{fileName}{net.dirty ? ' •' : ''}</span>
+        <button onClick={() => setDialog({ kind: 'open' })}>Open</button>
+        <button data-testid="save" onClick={() => (net.file ? save().catch((err) => say(err.message, true)) : setDialog({ kind: 'saveas' }))}>Save</button>
+        <button data-testid="save-as" onClick={() => setDialog({ kind: 'saveas' })}>Save as</button>
+        <span className="sep" />
+        <button data-testid="run" title="Ctrl+Enter" onClick={() => run('run')}>▶ Run</button>
+        <button data-testid="run-block" disabled={!selectedBlock} onClick={() => run('run_block', { block: selectedBlock.name })}>Run block</button>
+        <button data-testid="cancel" disabled={!running.size} onClick={() => attempt('cancel')}>Cancel</button>
+        <label title="re-run the changed block and its downstream after each property change">
+          <input type="checkbox" data-testid="auto-run" checked={autoRun}
+            onChange={(e) => { setAutoRun(e.target.checked); attempt('auto_run', { on: e.target.checked }); }} /> auto-run</label>
+        <span className="sep" />
+        <button data-testid="undo" disabled={!net.can_undo} title="Ctrl+Z" onClick={() => attempt('undo')}>Undo</button>
+        <button data-testid="redo" disabled={!net.can_redo} title="Ctrl+Y" onClick={() => attempt('redo')}>Redo</button>
+        <button onClick={autoLayout}>Layout</button>
+        <span className="sep" />
+        <button onClick={exportLaunch}>Export launch</button>
+        <button onClick={exportGraph}>Export SVG</button>
+        <label><input type="checkbox" checked={showYaml} onChange={(e) => setShowYaml(e.target.checked)} /> YAML</label>
+        <span className={`message ${message?.error ? 'error' : ''}`} data-testid="message"
+          title={message?.text}>{message?.text}</span>
+      </div>
+      <div className="main">
+        <BlockBrowser registry={registry} onStartDrag={startDrag} />
+        <div className="canvas" ref={wrapper} onDoubleClick={(e) => {
+          if (e.target.closest('.react-flow__pane')) openSearch(e.clientX, e.clientY);
+        }}>
+          {net.errors?.length > 0 && <div className="net-errors" data-testid="net-errors">{net.errors.join('\n')}</div>}
+          <ReactFlow nodes={shownNodes} edges={edges} nodeTypes={nodeTypes} minZoom={0.1} maxZoom={4}
+            onNodesChange={(changes) => setNodes((ns) => applyNodeChanges(changes, ns))}
+            onEdgesChange={(changes) => setEdges((es) => applyEdgeChanges(changes.filter((c) => c.type !== 'remove'), es))}
+            onNodeDragStop={(e, node, dragged) => attempt('move_blocks', {
+              positions: Object.fromEntries(dragged.map((n) => [n.id, [Math.round(n.position.x), Math.round(n.position.y)]])),
+            })}
+            onConnect={(c) => attempt('add_link', { from: `${c.source}.${c.sourceHandle}`, to: `${c.target}.${c.targetHandle}` })}
+            onConnectEnd={(e, state) => {
+              if (state.toNode || !state.fromHandle || state.fromHandle.type !== 'source') return;
+              const point = 'changedTouches' in e ? e.changedTouches[0] : e;
+              const port = state.fromNode && net.blocks.find((b) => b.name === state.fromNode.id)
+                ?.outputs.find((p) => p.name === state.fromHandle.id);
+              if (port) openSearch(point.clientX, point.clientY, port.type, `${state.fromNode.id}.${port.name}`);
+            }}
+            deleteKeyCode={null} zoomOnDoubleClick={false} colorMode="dark" fitView>
+            <Background />
+            <Controls />
+            <MiniMap pannable zoomable nodeColor={(n) => (running.has(n.id) ? '#f5c542' : '#8aa')} />
+          </ReactFlow>
+          {search && <BlockSearch registry={registry} inputType={search.inputType} at={search.at}
+            onPick={pickSearch} onClose={() => setSearch(null)} />}
+        </div>
+        <div className="side">
+          {selectedBlock ? <PropertiesPanel block={selectedBlock} net={net} request={request}
+            entry={registry.blocks.find((b) => b.type === selectedBlock.type)}
+            onRename={(block, name) => attempt('rename_block', { block, name })} />
+            : <div className="hint">Select a block to edit its properties. Drag blocks in from the left,
+              or double-click the canvas to search. Drag from an output to an input to link.</div>}
+          {showYaml && <YamlPane net={net} request={request} />}
+        </div>
+      </div>
+      {ghost && <div className="drag-ghost" style={{ left: ghost.x + 8, top: ghost.y + 8 }}>{ghost.type}</div>}
+      {dataPort && <DataDialog port={dataPort.port} type={dataPort.type}
+        data={fullData && fullData.header.port === dataPort.port ? fullData : null} onClose={() => setDataPort(null)} />}
+      {subnet && <SubnetView {...subnet} colors={colors} request={request} onClose={() => setSubnet(null)} />}
+      {dialog?.kind === 'open' && <FileDialog title="Open" initialPath={net.file} request={request}
+        onDone={(path) => request('open', { path }).then(() => setTimeout(() => flow.fitView({ padding: 0.1 }), 50))}
+        onClose={() => setDialog(null)} />}
+      {dialog?.kind === 'saveas' && <FileDialog title="Save as" initialPath={net.file} request={request}
+        onDone={(path) => save(path)} onClose={() => setDialog(null)} />}
+      {dialog?.kind === 'export' && <ExportDialog {...dialog} onClose={() => setDialog(null)} />}
+    </div>
+  );
+}

@@ -1,0 +1,69 @@
+import React, { memo } from 'react';
+import { Handle, Position } from '@xyflow/react';
+import { Preview } from './Preview.jsx';
+
+// One block on the canvas: ports coloured by type, status and timing, preview boxes.
+export const BlockNode = memo(function BlockNode({ data, selected }) {
+  const { block, colors, running, cached, previews, watched, actions } = data;
+  const stats = block.stats || {};
+  const status = stats.status || 'pending';
+  const classes = ['block-node', `status-${status.replace(' ', '-')}`];
+  if (running) classes.push('running');
+  if (selected) classes.push('selected');
+  return (
+    <div className={classes.join(' ')} data-block={block.name}>
+      <div className="block-title">
+        <span className="block-name">{block.name}</span>
+        <span className="block-type">{block.type.replace(/^imagenets\//, '')}</span>
+        {block.has_subnet && <button className="small nodrag" title="open the sub-net"
+          onClick={() => actions.openSubnet(block.name)}>⊞</button>}
+      </div>
+      <div className="block-status" data-testid="block-status">
+        <span className="status-word">{running ? 'running' : status}</span>
+        {cached && !running && <span className="cached">cached</span>}
+        <span className="stats" data-runs={stats.runs ?? 0}>
+          runs {stats.runs ?? 0} · {fmt(stats.last_ms)} / {fmt(stats.mean_ms)} ms
+        </span>
+        {block.feedback && <span className="feedback-tag" title="feedback">fb {block.feedback.property}</span>}
+      </div>
+      {stats.message && status !== 'ok' && <div className="block-message">{stats.message}</div>}
+      <div className="ports">
+        <div className="inputs">
+          {block.inputs.map((p) => (
+            <div key={p.name} className="port in" title={`${p.type}${p.doc ? ` — ${p.doc}` : ''}`}>
+              <Handle type="target" position={Position.Left} id={p.name}
+                style={{ background: colors[p.type] || '#888' }} />
+              <span>{p.name}{p.optional ? '?' : ''}</span>
+            </div>
+          ))}
+        </div>
+        <div className="outputs">
+          {block.outputs.map((p) => {
+            const key = `${block.name}.${p.name}`;
+            return (
+              <div key={p.name} className="port out" title={`${p.type}${p.doc ? ` — ${p.doc}` : ''}`}>
+                <button className={`small nodrag watch ${watched.has(key) ? 'on' : ''}`} title="preview on the node"
+                  data-port={key} onClick={() => actions.toggleWatch(key)}>◉</button>
+                <button className="small nodrag open-data" title="open the data dialog" data-port={key}
+                  onClick={() => actions.openData(key, p.type)}>⤢</button>
+                <span>{p.name}</span>
+                <Handle type="source" position={Position.Right} id={p.name}
+                  style={{ background: colors[p.type] || '#888' }} />
+              </div>
+            );
+          })}
+        </div>
+      </div>
+      {[...watched].filter((k) => k.startsWith(`${block.name}.`) && previews[k]).map((k) => (
+        <div key={k} className="preview" data-port={k}>
+          <div className="preview-port">{k.slice(block.name.length + 1)}</div>
+          <Preview port={k} data={previews[k]} />
+        </div>
+      ))}
+    </div>
+  );
+});
+
+function fmt(ms) {
+  return typeof ms === 'number' ? ms.toFixed(ms < 10 ? 2 : 1) : '–';
+}

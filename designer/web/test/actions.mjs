@@ -1,0 +1,91 @@
+// What a user does on the Designer page, with the mouse and keyboard (puppeteer-core).
+import { LONG, until } from './harness.mjs';
+
+export const nodeSel = (name) => `.react-flow__node[data-id="${name}"]`;
+const handleSel = (key, side) => {
+  const dot = key.lastIndexOf('.');
+  return `.react-flow__handle.${side}[data-nodeid="${key.slice(0, dot)}"][data-handleid="${key.slice(dot + 1)}"]`;
+};
+
+async function centre(page, selector) {
+  const element = await page.waitForSelector(selector, { visible: true, timeout: LONG });
+  const box = await element.boundingBox();
+  return { x: box.x + box.width / 2, y: box.y + box.height / 2 };
+}
+
+export async function blockNames(page) {
+  return page.$$eval('.react-flow__node', (nodes) => nodes.map((n) => n.dataset.id));
+}
+
+// Drags a block from the browser onto the canvas at page coordinates; returns its new name.
+export async function dragBlockIn(page, type, x, y) {
+  const before = new Set(await blockNames(page));
+  const from = await centre(page, `.block-entry[data-type="${type}"] .entry-name`);
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  await page.mouse.move(from.x + 40, from.y + 10, { steps: 4 });
+  await page.mouse.move(x, y, { steps: 10 });
+  await page.mouse.up();
+  return until(`block ${type} on the canvas`, async () => (await blockNames(page)).find((n) => !before.has(n)));
+}
+
+// Drags from an output handle to an input handle ("block.port" each).
+export async function connect(page, from, to) {
+  const a = await centre(page, handleSel(from, 'source'));
+  const b = await centre(page, handleSel(to, 'target'));
+  await page.mouse.move(a.x, a.y);
+  await page.mouse.down();
+  await page.mouse.move((a.x + b.x) / 2, (a.y + b.y) / 2 + 20, { steps: 6 });
+  await page.mouse.move(b.x, b.y, { steps: 6 });
+  await page.mouse.up();
+}
+
+export async function linkIds(page) {
+  return page.$$eval('.react-flow__edge', (edges) => edges.map((e) => e.dataset.id).sort());
+}
+
+export async function select(page, name) {
+  const p = await centre(page, `${nodeSel(name)} .block-name`);
+  await page.mouse.click(p.x, p.y);
+  await page.waitForSelector(`.properties-panel[data-block="${name}"]`, { timeout: LONG });
+}
+
+export async function setProperty(page, property, text) {
+  const field = await page.waitForSelector(`[data-testid="property-${property}"]`, { visible: true, timeout: LONG });
+  await field.click({ clickCount: 3 });
+  await page.keyboard.press('End');
+  await page.keyboard.down('Shift');
+  await page.keyboard.press('Home');
+  await page.keyboard.up('Shift');
+  await page.keyboard.type(String(text));
+  await page.keyboard.press('Enter');
+}
+
+export async function stats(page, name) {
+  return page.$eval(nodeSel(name), (n) => ({
+    status: n.querySelector('.status-word').textContent,
+    runs: Number(n.querySelector('.stats').dataset.runs),
+    message: n.querySelector('.block-message')?.textContent || '',
+  }));
+}
+
+export async function allStats(page) {
+  const out = {};
+  for (const name of await blockNames(page)) out[name] = await stats(page, name);
+  return out;
+}
+
+export async function message(page) {
+  return page.$eval('[data-testid="message"]', (m) => ({ text: m.textContent, error: m.classList.contains('error') }));
+}
+
+export async function click(page, selector) {
+  const p = await centre(page, selector);
+  await page.mouse.click(p.x, p.y);
+}
+
+// Turns the preview box of an output on; resolves when it shows a value.
+export async function watch(page, port) {
+  await click(page, `button.watch[data-port="${port}"]`);
+  await page.waitForSelector(`.preview[data-port="${port}"] [data-revision]`, { timeout: LONG });
+}
