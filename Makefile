@@ -1,15 +1,20 @@
 # Two commands for a bare Debian 12 (as root, or with sudo):
 #   make demo   the main job
 #   make test   build everything and run every test (gtest + rostest, via ctest)
-# Both install missing Debian packages first, then configure and build into build/.
+# Both install missing Debian packages first, then configure and build: CMake's files go to build/,
+# the catkin devel space (executables, libraries, setup.bash) to devel/ beside it, as in any catkin
+# workspace. Not under build/: rosrun never looks below <package>/build/, and this package is the
+# repository root.
 
 # Debian's python must come first: catkin needs its ROS modules (a pyenv python has none).
 export PATH := /usr/bin:/bin:$(PATH)
 export ROS_HOSTNAME ?= localhost
 BUILD ?= build
+DEVEL ?= devel
 JOBS ?= 2
 CMAKE_FLAGS = -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 \
-              -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON
+              -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON \
+              -DCATKIN_DEVEL_PREFIX=$(abspath $(DEVEL))
 OUT ?= out/demo
 
 .PHONY: deps configure build tests test demo bench clean
@@ -17,8 +22,10 @@ OUT ?= out/demo
 deps:
 	@scripts/install-deps
 
+# Configures once; again only when the build folder's devel space is not $(DEVEL) (older layout).
 configure: deps
-	@test -f $(BUILD)/CMakeCache.txt || cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+	@grep -qx 'CATKIN_DEVEL_PREFIX:PATH=$(abspath $(DEVEL))' $(BUILD)/CMakeCache.txt 2>/dev/null || \
+	  cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
 
 build: configure
 	cmake --build $(BUILD) -j$(JOBS)
@@ -30,11 +37,11 @@ test: tests
 	ctest --test-dir $(BUILD) --output-on-failure
 
 demo: build
-	scripts/demo $(BUILD) $(OUT)
+	scripts/demo $(DEVEL) $(OUT)
 
 bench: build
 	cmake --build $(BUILD) --target benchmarks -j$(JOBS)
-	scripts/run-benchmarks $(BUILD)
+	scripts/run-benchmarks $(DEVEL)
 
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) $(DEVEL) out

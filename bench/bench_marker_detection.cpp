@@ -1,7 +1,7 @@
 // Marker detection speed on 1024x768 images of the marker study's scene (FRIEND camera, 600 mm):
 // one detection at a fixed threshold, the full 40..80 feedback sweep through the robust marker
 // detection net (sequential, parallel, coarse-to-fine), and libapriltag on the same views.
-// Prints figures; run from the repository root: build/devel/lib/imagenets/bench_marker_detection
+// Prints figures; run from the repository root: devel/lib/imagenets/bench_marker_detection
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

@@ -14,7 +14,7 @@ TEST(PluginXml, CommittedFileMatchesTheRegistry) {
   committed << file.rdbuf();
   EXPECT_EQ(committed.str(), imagenets::BlockRegistry::instance().pluginXml())
       << "imagenets_plugins.xml is out of date: run\n"
-         "  build/devel/lib/imagenets/imagenets blocks --plugin-xml > imagenets_plugins.xml";
+         "  devel/bin/imagenets blocks --plugin-xml > imagenets_plugins.xml";
 }
 
 TEST(PluginXml, ListsEveryBlockOfTheBlockLibrary) {

@@ -24,7 +24,7 @@ int run(const Args& args) {
     else if (args[i] == "--input-type") input_type = flagValue(args, i);
     else if (args[i] == "--output-type") output_type = flagValue(args, i);
     else if (args[i] == "--plugin-xml") plugin_xml = true;
-    else throw UsageError("unknown argument '" + args[i] + "'");
+    else throw unknownArgument(args[i]);
   }
   if (plugin_xml) {
     std::cout << BlockRegistry::instance().pluginXml();

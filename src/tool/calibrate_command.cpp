@@ -17,13 +17,13 @@ int calibrate(const Args& args) {
   double timeout = 30;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--redundancy") {
-      redundancy = std::stoi(flagValue(args, i));
+      redundancy = intValue(args, i);
     } else if (args[i] == "--method") {
       method = flagValue(args, i);
     } else if (args[i] == "--wait") {
-      timeout = std::stod(flagValue(args, i));
-    } else if (args[i].rfind("__", 0) != 0) {
-      throw UsageError("unknown argument '" + args[i] + "'");
+      timeout = doubleValue(args, i);
+    } else if (args[i].rfind("__", 0) != 0) {  // roslaunch's __name:= etc.
+      throw unknownArgument(args[i]);
     }
   }
   CalibrationClient client("imagenets_calibrate", timeout);

@@ -29,6 +29,13 @@ struct UsageError : std::runtime_error {
 
 // Pops the value after a flag (`--output-dir DIR`); throws UsageError if missing.
 std::string flagValue(const Args& args, size_t& i);
+// The same, as a number: throws UsageError naming the flag and the value when it is not one.
+int intValue(const Args& args, size_t& i);
+double doubleValue(const Args& args, size_t& i);
+
+// The error for an argument a command does not take: "unknown option '--x'" for anything that
+// starts with '-', else "unexpected argument 'x'".
+UsageError unknownArgument(const std::string& arg);
 
 }  // namespace tool
 }  // namespace imagenets

@@ -16,13 +16,10 @@ int run(const Args& args) {
   std::string net;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--port") {
-      const std::string v = flagValue(args, i);
-      try {
-        options.port = std::stoi(v);
-      } catch (const std::exception&) {
-        throw UsageError("--port '" + v + "' is not a number");
+      options.port = intValue(args, i);
+      if (options.port < 0 || options.port > 65535) {
+        throw UsageError("--port " + std::to_string(options.port) + " is out of range 0..65535");
       }
-      if (options.port < 0 || options.port > 65535) throw UsageError("--port " + v + " is out of range 0..65535");
     } else if (args[i] == "--bind") {
       options.bind = flagValue(args, i);
     } else if (args[i] == "--root") {
@@ -31,12 +28,10 @@ int run(const Args& args) {
       options.session.roots.push_back(dir);
     } else if (args[i].rfind("__", 0) == 0) {
       continue;  // roslaunch's __name:= / __log:=
-    } else if (!args[i].empty() && args[i][0] == '-') {
-      throw UsageError("unknown option '" + args[i] + "'");
-    } else if (net.empty()) {
+    } else if (net.empty() && !(args[i].size() > 1 && args[i][0] == '-')) {
       net = args[i];
     } else {
-      throw UsageError("unexpected argument '" + args[i] + "'");
+      throw unknownArgument(args[i]);
     }
   }
   // Without a net or a root, new nets are saved in the working folder.

@@ -67,7 +67,7 @@ int run(const Args& args) {
       }
       feedback = true;
     } else if (a == "--coarse-to-fine") mode.search = "coarse_to_fine";
-    else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+    else if (a.size() > 1 && a[0] == '-') throw unknownArgument(a);
     else images.push_back(a);
   }
   if (fixed && feedback) throw UsageError("give --threshold or --feedback, not both");

@@ -16,8 +16,8 @@ int run(const Args& args) {
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "-o" || args[i] == "--output") out = flagValue(args, i);
     else if (args[i] == "--expand") expand = true;
-    else if (net_path.empty()) net_path = args[i];
-    else throw UsageError("unexpected argument '" + args[i] + "'");
+    else if (net_path.empty() && !(args[i].size() > 1 && args[i][0] == '-')) net_path = args[i];
+    else throw unknownArgument(args[i]);
   }
   if (net_path.empty() || out.empty()) throw UsageError("expects a net file and -o FILE");
   const std::string dot = toDot(*Net::loadFile(net_path), expand);

@@ -51,22 +51,22 @@ int run(const Args& args) {
     else if (a == "--camera") config.camera = flagValue(args, i);
     else if (a == "--net") config.net = flagValue(args, i);
     else if (a == "--output-dir" || a == "-o") out_dir = flagValue(args, i);
-    else if (a == "--distance") config.distance = std::stod(flagValue(args, i));
+    else if (a == "--distance") config.distance = doubleValue(args, i);
     else if (a == "--pan") parseRange(flagValue(args, i), &config.pan_from, &config.pan_to, &config.pan_step);
     else if (a == "--tilt") parseRange(flagValue(args, i), &config.tilt_from, &config.tilt_to, &config.tilt_step);
     else if (a == "--feedback") parseRange(flagValue(args, i), &config.feedback_from, &config.feedback_to, &config.feedback_step);
-    else if (a == "--threshold") config.fixed_threshold = std::stoi(flagValue(args, i));
+    else if (a == "--threshold") config.fixed_threshold = intValue(args, i);
     else if (a == "--lighting") {
       const std::string l = flagValue(args, i);
       if (l == "both") config.lightings = {"even", "varying"};
       else if (l == "even" || l == "varying") config.lightings = {l};
       else throw UsageError("--lighting '" + l + "' is not even, varying or both");
-    } else if (a == "--threads") config.threads = std::stoi(flagValue(args, i));
-    else if (a == "--supersampling") config.supersampling = std::stoi(flagValue(args, i));
+    } else if (a == "--threads") config.threads = intValue(args, i);
+    else if (a == "--supersampling") config.supersampling = intValue(args, i);
     else if (a == "--seed") config.seed = static_cast<unsigned>(std::stoul(flagValue(args, i)));
-    else if (a == "--scale-mm") scale_mm = std::stod(flagValue(args, i));
+    else if (a == "--scale-mm") scale_mm = doubleValue(args, i);
     else if (a == "--from-csv") from_csv = flagValue(args, i);
-    else throw UsageError("unknown argument '" + a + "'");
+    else throw unknownArgument(a);
   }
   boost::filesystem::create_directories(out_dir);
   std::vector<marker::StudyRow> rows;

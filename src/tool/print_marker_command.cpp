@@ -90,8 +90,8 @@ int run(const Args& args) {
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--marker") marker_path = flagValue(args, i);
     else if (args[i] == "--output" || args[i] == "-o") out_path = flagValue(args, i);
-    else if (args[i] == "--dpi") dpi = std::stod(flagValue(args, i));
-    else throw UsageError("unexpected argument '" + args[i] + "'");
+    else if (args[i] == "--dpi") dpi = doubleValue(args, i);
+    else throw unknownArgument(args[i]);
   }
   if (marker_path.empty() || out_path.empty()) throw UsageError("needs --marker MARKER.yaml and -o OUT.png|OUT.pdf");
   if (!(dpi >= 50 && dpi <= 2400)) throw UsageError("--dpi must be 50..2400");

@@ -5,6 +5,7 @@
 // launch/repeatability.launch, which starts both and this command).
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -42,7 +43,14 @@ std::vector<int> parseList(const std::string& s) {
   std::vector<int> out;
   std::stringstream ss(s);
   std::string item;
-  while (std::getline(ss, item, ',')) out.push_back(std::stoi(item));
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const long n = std::strtol(item.c_str(), &end, 10);
+    if (item.empty() || *end || n < 1 || n > 999) {
+      throw UsageError("--redundancy '" + s + "': '" + item + "' is not a count 1..999");
+    }
+    out.push_back(static_cast<int>(n));
+  }
   if (out.empty()) throw UsageError("--redundancy needs a list like 1,3,5");
   return out;
 }
@@ -136,7 +144,7 @@ int repeatability(const Args& args) {
   int real_speed_runs = 2;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--runs") {
-      runs = std::stoi(flagValue(args, i));
+      runs = intValue(args, i);
     } else if (args[i] == "--redundancy") {
       redundancies = parseList(flagValue(args, i));
     } else if (args[i] == "--method") {
@@ -145,11 +153,11 @@ int repeatability(const Args& args) {
     } else if (args[i] == "--output-dir") {
       out = flagValue(args, i);
     } else if (args[i] == "--real-speed-runs") {
-      real_speed_runs = std::stoi(flagValue(args, i));
+      real_speed_runs = intValue(args, i);
     } else if (args[i] == "--wait") {
-      wait = std::stod(flagValue(args, i));
-    } else if (args[i].rfind("__", 0) != 0) {
-      throw UsageError("unknown argument '" + args[i] + "'");
+      wait = doubleValue(args, i);
+    } else if (args[i].rfind("__", 0) != 0) {  // roslaunch's __name:= etc.
+      throw unknownArgument(args[i]);
     }
   }
   if (runs < 2) throw UsageError("--runs must be >= 2");

@@ -44,10 +44,10 @@ int run(const Args& args) {
     else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
     else if (args[i] == "--trials") trials = true;
     else if (args[i] == "--output-dir" || args[i] == "-o") output_dir = flagValue(args, i);
-    else if (args[i] == "--threads") options.threads = std::stoi(flagValue(args, i));
-    else if (!args[i].empty() && args[i][0] == '-') throw UsageError("unknown option '" + args[i] + "'");
+    else if (args[i] == "--threads") options.threads = intValue(args, i);
+    else if (args[i].size() > 1 && args[i][0] == '-') throw unknownArgument(args[i]);
     else if (net_path.empty()) net_path = args[i];
-    else throw UsageError("unexpected argument '" + args[i] + "'");
+    else throw unknownArgument(args[i]);
   }
   if (net_path.empty()) throw UsageError("expects a net file");
 

@@ -9,6 +9,9 @@ namespace tool {
 namespace {
 
 int run(const Args& args) {
+  for (const auto& a : args) {
+    if (a.size() > 1 && a[0] == '-') throw unknownArgument(a);
+  }
   if (args.size() != 1) throw UsageError("expects one net file");
   try {
     Executor executor(Net::loadFile(args[0]), ExecutorOptions{1});

@@ -15,9 +15,10 @@ struct Result {
   std::string output;
 };
 
-// Runs `imagenets ARGS` from the repository root; returns exit status and stdout+stderr.
-Result tool(const std::string& args) {
-  const std::string cmd = std::string(IMAGENETS_TOOL) + " " + args + " 2>&1";
+// Runs `imagenets ARGS` from the repository root; returns exit status and stdout+stderr
+// (only stdout with stdout_only).
+Result tool(const std::string& args, bool stdout_only = false) {
+  const std::string cmd = std::string(IMAGENETS_TOOL) + " " + args + (stdout_only ? " 2>/dev/null" : " 2>&1");
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   char buf[4096];
@@ -130,6 +131,64 @@ TEST(Tool, GraphDrawsAnSvg) {
   expectContains(ss.str(), "<svg");
   expectContains(ss.str(), "threshold");
   expectContains(ss.str(), "feedback: threshold (max)");
+}
+
+// The sub-command names from `imagenets --help`: one line each, "  NAME  summary".
+std::vector<std::string> subCommands(const std::string& help) {
+  std::vector<std::string> names;
+  std::istringstream lines(help.substr(help.find("commands:\n") + 10));
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string name, summary;
+    words >> name;
+    std::getline(words, summary);
+    EXPECT_EQ(line.rfind("  ", 0), 0u) << "not a sub-command line: '" << line << "'";
+    EXPECT_GT(summary.size(), 10u) << "sub-command '" << name << "' has no one-line summary";
+    names.push_back(name);
+  }
+  return names;
+}
+
+TEST(Tool, HelpListsEverySubCommandOnOneLine) {
+  for (const std::string flag : {"--help", "-h"}) {
+    Result r = tool(flag, true);
+    EXPECT_EQ(r.status, 0) << flag;
+    expectContains(r.output, "usage: imagenets COMMAND");
+    const auto names = subCommands(r.output);
+    for (const char* known : {"blocks", "validate", "run", "graph", "detect", "print-marker", "marker-study",
+                              "calibrate", "repeatability"}) {
+      EXPECT_NE(std::find(names.begin(), names.end(), known), names.end()) << known << " missing in:\n" << r.output;
+    }
+  }
+}
+
+TEST(Tool, EverySubCommandAnswersHelpWithItsUsage) {
+  const auto names = subCommands(tool("--help", true).output);
+  ASSERT_FALSE(names.empty());
+  for (const auto& name : names) {
+    for (const std::string flag : {"--help", "-h"}) {
+      // Help wins over other arguments, even ones that would be errors or would start work.
+      Result r = tool(name + " " + flag + " --no-such-option", true);
+      EXPECT_EQ(r.status, 0) << name << " " << flag << ":\n" << r.output;
+      EXPECT_EQ(r.output.rfind("usage: imagenets " + name, 0), 0u) << name << " " << flag << ":\n" << r.output;
+    }
+  }
+}
+
+TEST(Tool, AWrongOptionIsNamedWithTheUsage) {
+  for (const auto& name : subCommands(tool("--help", true).output)) {
+    Result r = tool(name + " --no-such-option");
+    EXPECT_EQ(r.status, 2) << name << ":\n" << r.output;
+    expectContains(r.output, "imagenets " + name + ": unknown option '--no-such-option'");
+    expectContains(r.output, "usage: imagenets " + name);
+  }
+  Result r = tool("run config/nets/threshold_demo.yaml --threads many");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "imagenets run: --threads 'many' is not an integer");
+  r = tool("repeatability --redundancy 1,x");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--redundancy '1,x': 'x' is not a count");
 }
 
 TEST(Tool, UnknownCommandAndMissingArgumentsAreUsageErrors) {

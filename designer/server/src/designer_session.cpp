@@ -182,7 +182,13 @@ void DesignerSession::rebuild(const NetDocument& doc) {
   auto net = Net::build(doc.spec);
   auto executor = std::make_unique<Executor>(std::move(net), ExecutorOptions{options_.threads});
   // Run events go to every tab as they happen (observers run on pool threads: broadcast only queues).
-  executor->addObserver([this](const RunEvent& e) { out_.broadcast(dump(eventJson(e))); });
+  executor->addObserver([this](const RunEvent& e) {
+    out_.broadcast(dump(eventJson(e)));
+    if (e.kind == RunEventKind::BlockCached) {
+      std::lock_guard<std::mutex> lock(cached_mutex_);
+      cached_.push_back(e.block);
+    }
+  });
   {
     std::lock_guard<std::mutex> lock(executor_mutex_);
     executor_.swap(executor);
@@ -259,10 +265,12 @@ bool DesignerSession::configurationChanged(const NetDocument& previous, const Ne
   return false;
 }
 
-void DesignerSession::apply(NetDocument next) {
+void DesignerSession::apply(NetDocument next, const std::string& merge) {
   NetDocument previous = doc_;
   install(std::move(next));
-  undo_.push_back({std::move(previous)});
+  if (merge.empty() || undo_.empty() || undo_.back().merge != merge || !redo_.empty()) {
+    undo_.push_back({std::move(previous), merge});
+  }
   redo_.clear();
   changed();
 }
@@ -540,7 +548,7 @@ json DesignerSession::opSetProperty(int, const json& request) {
   } else {
     b.properties.push_back(PropertySetting{property, propertyText(value), SourceLocation{doc_.spec.origin, 0}});
   }
-  apply(std::move(next));
+  apply(std::move(next), "property " + name + "." + property);
   json reply = json::object();
   if (auto_run_) reply["run"] = runAndReport(0, "");
   return reply;
@@ -678,11 +686,18 @@ json DesignerSession::runReport(const RunReport& report) const {
 }
 
 json DesignerSession::runAndReport(int kind, const std::string& block) {
+  {
+    std::lock_guard<std::mutex> lock(cached_mutex_);
+    cached_.clear();
+  }
   RunReport report = kind == 0 ? executor_->run() : kind == 1 ? executor_->runAll() : executor_->runBlock(block);
   ++run_count_;
   out_.broadcast(dump(netState()));  // stats
   sendPortData();
-  return runReport(report);
+  json reply = runReport(report);
+  std::lock_guard<std::mutex> lock(cached_mutex_);
+  reply["cached"] = cached_;
+  return reply;
 }
 
 json DesignerSession::opRun(int, const json&) { return runAndReport(0, ""); }

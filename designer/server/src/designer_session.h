@@ -68,6 +68,7 @@ class DesignerSession {
  private:
   struct Snapshot {
     NetDocument doc;
+    std::string merge;  // edits with the same non-empty key in a row make one undo step
   };
   using Handler = nlohmann::json (DesignerSession::*)(int client, const nlohmann::json& request);
   static const std::map<std::string, Handler>& handlers();
@@ -107,8 +108,9 @@ class DesignerSession {
   // passes the changed properties to the executor (its cache stays valid). Throws NetError
   // (nothing changed) when the engine refuses it.
   void install(NetDocument next);
-  // install() as one undo step, and the new state to every tab.
-  void apply(NetDocument next);
+  // install() as one undo step, and the new state to every tab. Consecutive edits with the same
+  // non-empty `merge` key (one property dragged along a slider) are one step.
+  void apply(NetDocument next, const std::string& merge = "");
   void rebuild(const NetDocument& doc);
   // Whether a property change from `previous` to `next` changes a block's configuration (its
   // sub-net, its ports): then the net is built anew instead of setting the property.
@@ -137,6 +139,8 @@ class DesignerSession {
   std::vector<std::string> errors_;
   long revision_ = 0;
   long run_count_ = 0;
+  std::mutex cached_mutex_;
+  std::vector<std::string> cached_;  // blocks served from cache in the run in progress
   bool auto_run_ = true;
   // Watched ports per tab and mode, and what each tab was sent last (value identity).
   std::map<int, std::map<std::string, std::set<std::string>>> watches_;

@@ -1,5 +1,6 @@
 #include "designer_client.h"
 
+#include <future>
 #include <thread>
 
 #include "beast.h"
@@ -10,6 +11,8 @@ namespace designer {
 
 struct DesignerClient::Impl {
   asio::io_context ioc;
+  // Keeps the network thread alive while no read is armed (reading paused).
+  asio::executor_work_guard<asio::io_context::executor_type> work = asio::make_work_guard(ioc);
   websocket::stream<beast::tcp_stream> ws{ioc};
   beast::flat_buffer buffer;
   std::thread thread;
@@ -19,9 +22,13 @@ struct DesignerClient::Impl {
   std::deque<std::pair<bool, std::shared_ptr<std::string>>> outgoing;
   bool writing = false;
   bool open = false;
+  bool paused = false;   // network thread only
+  bool reading = false;  // network thread only
 
   void read() {
+    reading = true;
     ws.async_read(buffer, [this](beast::error_code ec, size_t) {
+      reading = false;
       if (ec) {
         std::lock_guard<std::mutex> lock(mutex);
         open = false;
@@ -40,7 +47,7 @@ struct DesignerClient::Impl {
         queue.push_back(std::move(m));
       }
       arrived.notify_all();
-      read();
+      if (!paused) read();
     });
   }
 
@@ -82,6 +89,7 @@ DesignerClient::~DesignerClient() {
     beast::error_code ec;
     beast::get_lowest_layer(impl_->ws).socket().shutdown(tcp::socket::shutdown_both, ec);
     beast::get_lowest_layer(impl_->ws).close();
+    impl_->work.reset();
   });
   impl_->thread.join();
 }
@@ -132,6 +140,22 @@ nlohmann::json DesignerClient::request(nlohmann::json request, double timeout_s)
   sendText(request.dump());
   return waitForText([id](const nlohmann::json& j) { return j.value("op", "") == "reply" && j.contains("id") && j["id"] == id; },
                      "the reply to " + request.value("op", std::string("?")), timeout_s);
+}
+
+void DesignerClient::pauseReading() {
+  std::promise<void> done;
+  asio::post(impl_->ioc, [this, &done] {
+    impl_->paused = true;
+    done.set_value();
+  });
+  done.get_future().wait();
+}
+
+void DesignerClient::resumeReading() {
+  asio::post(impl_->ioc, [this] {
+    impl_->paused = false;
+    if (!impl_->reading) impl_->read();
+  });
 }
 
 void DesignerClient::clear() {

@@ -41,6 +41,9 @@ class DesignerClient {
   Message waitForFrame(const std::string& port, const std::string& mode, double timeout_s = 60);
   // Drops every queued message.
   void clear();
+  // Stops taking messages off the socket (a tab that falls behind) / starts again.
+  void pauseReading();
+  void resumeReading();
   bool connected() const;
 
  private:

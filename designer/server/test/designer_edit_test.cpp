@@ -71,7 +71,10 @@ TEST_F(DesignerTest, UndoAndRedoStepThroughTheEdits) {
   addBlock(c, "imagenets/Grayscale", "gray");
   addBlock(c, "imagenets/Threshold", "threshold");
   expectOk(c.request({{"op", "add_link"}, {"from", "gray.image"}, {"to", "threshold.image"}}));
-  expectOk(c.request({{"op", "set_property"}, {"block", "threshold"}, {"property", "threshold"}, {"text", "72"}}));
+  // A slider dragged over 70, 71, 72 is one step.
+  for (const char* v : {"70", "71", "72"}) {
+    expectOk(c.request({{"op", "set_property"}, {"block", "threshold"}, {"property", "threshold"}, {"text", v}}));
+  }
   EXPECT_EQ(blockOf(netState(c), "threshold")["properties"]["threshold"], "72");
   expectOk(c.request({{"op", "undo"}}));
   EXPECT_EQ(blockOf(netState(c), "threshold")["properties"]["threshold"], "128");  // the default again
@@ -108,6 +111,7 @@ TEST_F(DesignerTest, PropertyChangeReRunsOnlyThatBlockAndItsDownstream) {
   const json reply = c.request({{"op", "set_property"}, {"block", "threshold"}, {"property", "threshold"}, {"text", 90}});
   expectOk(reply);
   EXPECT_EQ(reply["run"]["ran"], json::array({"threshold"})) << reply.dump();
+  EXPECT_EQ(reply["run"]["cached"], json::array({"source", "gray", "blur"})) << reply.dump();
   const json net = netState(c);
   EXPECT_EQ(blockOf(net, "source")["stats"]["runs"], 1);
   EXPECT_EQ(blockOf(net, "gray")["stats"]["runs"], 1);
@@ -332,4 +336,49 @@ TEST_F(DesignerTest, SubNetIsShownReadOnlyWithItsInnerBlocks) {
   expectContains(failure(c.request({{"op", "subnet"}, {"block", "nope"}})), "no block named 'nope'");
   expectOk(c.request({{"op", "subnet_open"}, {"block", "seg"}}));
   EXPECT_EQ(netState(c)["file"], file);
+}
+
+TEST_F(DesignerTest, YamlTextReplacesTheNetOrIsRefusedWithItsLine) {
+  start();
+  DesignerClient& c = connect();
+  std::string e = failure(c.request({{"op", "set_yaml"},
+                                     {"text", "blocks:\n  gray: {type: imagenets/Grayscale}\n  t: {type: imagenets/Thresold}\n"}}));
+  expectContains(e, ":3: block 't': unknown block type 'imagenets/Thresold'");
+  e = failure(c.request({{"op", "set_yaml"}, {"text", "blocks:\n  gray: {type: [\n"}}));
+  expectContains(e, "malformed YAML");
+  EXPECT_TRUE(netState(c)["blocks"].empty());
+  const std::string text =
+      "# my net\nblocks:\n  gray: {type: imagenets/Grayscale}  # gray\n  t: {type: imagenets/Threshold}\n"
+      "links:\n  - gray.image -> t.image\ndesigner:\n  positions: {t: [5, 6]}\n";
+  expectOk(c.request({{"op", "set_yaml"}, {"text", text}}));
+  const json net = netState(c);
+  EXPECT_EQ(net["yaml"], text);  // comments kept while the net is unchanged
+  EXPECT_EQ(blockOf(net, "t")["position"], json({5, 6}));
+  EXPECT_EQ(net["links"][0]["to"], "t.image");
+}
+
+TEST_F(DesignerTest, ATabThatFallsBehindGetsTheNewestValueNotEveryOne) {
+  start();
+  DesignerClient& editor = connect();
+  DesignerClient& slow = connect();
+  buildChain(editor);
+  expectOk(editor.request({{"op", "run"}}));
+  expectOk(slow.request({{"op", "watch"}, {"ports", {"threshold.image"}}, {"mode", "full"}}));
+  const long first_run = slow.waitForFrame("threshold.image", "full").json["run"];
+  slow.pauseReading();
+  // 40 changes, each a new 786 kB binary image for the slow tab: far more than the socket buffers
+  // hold while it does not read.
+  const int changes = 40;
+  for (int i = 0; i < changes; ++i) {
+    const json reply = editor.request({{"op", "set_property"}, {"block", "threshold"}, {"property", "threshold"}, {"text", 100 + i}});
+    ASSERT_EQ(reply["run"]["ran"], json::array({"threshold"}));
+  }
+  slow.resumeReading();
+  int frames = 0;
+  for (;;) {
+    const DesignerClient::Message m = slow.waitForFrame("threshold.image", "full");
+    ++frames;
+    if (m.json["run"] == first_run + changes) break;  // the newest value, from the last run
+  }
+  EXPECT_LT(frames, changes);
 }

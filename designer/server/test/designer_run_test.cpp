@@ -97,7 +97,9 @@ TEST_F(DesignerTest, ToolServesTheNetGivenOnItsCommandLine) {
   int status = 0;
   const std::string usage = commandOutput(std::string(IMAGENETS_TOOL) + " designer --port many", status);
   EXPECT_EQ(WEXITSTATUS(status), 2);
-  expectContains(usage, "--port 'many' is not a number");
+  expectContains(usage, "--port 'many' is not an integer");
+  expectContains(commandOutput(std::string(IMAGENETS_TOOL) + " designer --colour", status), "unknown option '--colour'");
+  EXPECT_EQ(WEXITSTATUS(status), 2);
 
   const std::string file = copyConfigNet("threshold_demo.yaml");
   int out[2];

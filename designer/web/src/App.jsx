@@ -37,12 +37,12 @@ function Designer() {
   const [fullData, setFullData] = useState(null);
   const [dialog, setDialog] = useState(null);
   const [subnet, setSubnet] = useState(null);
-  const [autoRun, setAutoRun] = useState(true);
   const [showYaml, setShowYaml] = useState(true);
   const [ghost, setGhost] = useState(null);
   const [connected, setConnected] = useState(false);
   const wrapper = useRef(null);
   const clipboard = useRef(null);
+  const fitAtStart = useRef(null);
   const colors = registry?.types || {};
 
   const say = (text, error = false) => setMessage({ text, error, at: Date.now() });
@@ -53,9 +53,13 @@ function Designer() {
   const colorsRef = useRef({});
   const flowRef = useRef({ nodes, edges });
   flowRef.current = { nodes, edges };
+  const fileRef = useRef(undefined);
   const applyNet = useCallback((state) => {
     setNet(state);
-    const built = flowFromNet(state, colorsRef.current, flowRef.current.nodes, flowRef.current.edges);
+    // Another file: nothing of the old canvas carries over (block names may repeat).
+    const same = fileRef.current === undefined || fileRef.current === state.file;
+    fileRef.current = state.file;
+    const built = flowFromNet(state, colorsRef.current, same ? flowRef.current.nodes : [], same ? flowRef.current.edges : []);
     flowRef.current = built;
     setNodes(built.nodes);
     setEdges(built.edges);
@@ -75,8 +79,6 @@ function Designer() {
       colorsRef.current = reply.registry.types;
       applyNet(reply.net);
       setConnected(true);
-      conn.request('auto_run', { on: true });
-      setTimeout(() => flow.fitView({ padding: 0.1 }), 50);
     }).catch((err) => say(err.message, true));
     return () => offs.forEach((off) => off());
   }, [conn]);
@@ -104,16 +106,26 @@ function Designer() {
       setFullData((old) => (old && old.header.port !== header.port ? old : data));
       return;
     }
-    if (header.format === 'jpeg' || header.format === 'png') {
-      data.url = URL.createObjectURL(new Blob([payload], { type: `image/${header.format}` }));
-    }
-    setPreviews((p) => {
-      if (p[header.port]?.url) setTimeout(() => URL.revokeObjectURL(p[header.port].url), 1000);
-      return { ...p, [header.port]: data };
+    const store = (value) => setPreviews((p) => {
+      p[header.port]?.bitmap?.close();
+      return { ...p, [header.port]: value };
     });
+    // Thumbnails are decoded off the main thread, then drawn straight onto the node's canvas.
+    if (header.format === 'jpeg' || header.format === 'png') {
+      createImageBitmap(new Blob([payload], { type: `image/${header.format}` }))
+        .then((bitmap) => store({ ...data, bitmap }))
+        .catch((err) => store({ header: { ...header, format: 'none', error: `cannot decode: ${err.message}` } }));
+    } else {
+      store(data);
+    }
   };
 
-  useEffect(() => { if (connected) attempt('watch', { ports: [...watched], mode: 'preview' }); }, [watched, connected]);
+  // Only ports that still exist are watched (a block may have gone by an edit in any tab).
+  const watchedPorts = useMemo(() => JSON.stringify([...watched].filter((key) => {
+    const [block, port] = split(key);
+    return net?.blocks.some((b) => b.name === block && b.outputs.some((p) => p.name === port));
+  }).sort()), [watched, net]);
+  useEffect(() => { if (connected) attempt('watch', { ports: JSON.parse(watchedPorts), mode: 'preview' }); }, [watchedPorts, connected]);
   useEffect(() => {
     if (!connected) return;
     setFullData(null);
@@ -129,10 +141,22 @@ function Designer() {
     },
   }), []);
 
-  const shownNodes = useMemo(() => nodes.map((n) => {
-    const block = net?.blocks.find((b) => b.name === n.id);
-    return block ? { ...n, data: { block, colors, running: running.has(n.id), cached: cached.has(n.id), previews, watched, actions } } : n;
-  }).filter((n) => n.data.block), [nodes, net, colors, running, cached, previews, watched, actions]);
+  // Each node's data object changes only when something it shows changes, so that the memoized
+  // BlockNode re-renders only the nodes a message concerns (previews arrive many times a second).
+  const nodeData = useRef(new Map());
+  const shownNodes = useMemo(() => {
+    const blocks = new Map((net?.blocks || []).map((b) => [b.name, b]));
+    return nodes.filter((n) => blocks.has(n.id)).map((n) => {
+      const own = [...watched].filter((k) => split(k)[0] === n.id);
+      const data = { block: blocks.get(n.id), colors, running: running.has(n.id), cached: cached.has(n.id),
+        previews: Object.fromEntries(own.map((k) => [k, previews[k]])), watched: new Set(own), actions };
+      const old = nodeData.current.get(n.id);
+      const same = old && ['block', 'colors', 'running', 'cached', 'actions'].every((k) => old[k] === data[k])
+        && own.length === old.watched.size && own.every((k) => old.watched.has(k) && old.previews[k] === data.previews[k]);
+      if (!same) nodeData.current.set(n.id, data);
+      return { ...n, data: same ? old : data };
+    });
+  }, [nodes, net, colors, running, cached, previews, watched, actions]);
 
   // --- edits -----------------------------------------------------------------------------------
   const run = async (op, args) => {
@@ -143,8 +167,25 @@ function Designer() {
   };
   const selectedNames = () => nodes.filter((n) => n.selected).map((n) => n.id);
   const addBlock = async (type, position) => {
-    const r = await attempt('add_block', { type, position: [Math.round(position.x), Math.round(position.y)] });
-    return r?.name;
+    const at = [Math.round(position.x), Math.round(position.y)];
+    try {
+      return (await request('add_block', { type, position: at })).name;
+    } catch (err) {
+      // A block built from a file (a sub-net's `net`) cannot exist without it: ask for the file.
+      const entry = registry.blocks.find((b) => b.type === type);
+      const paths = (entry?.properties || []).filter((p) => p.path);
+      const property = paths.find((p) => err.message.includes(`'${p.name}'`)) || paths[0];
+      if (!property) { say(err.message, true); return null; }
+      say(err.message, true);
+      return new Promise((resolve) => setDialog({ kind: 'choose', title: `${property.name} of the new ${type.replace(/^imagenets\//, '')}`,
+        onDone: async (path) => {
+          const base = type.replace(/^.*\//, '').replace(/([a-z])([A-Z])/g, '$1_$2').toLowerCase();
+          const r = await request('paste', { blocks: [{ name: base, type, properties: { [property.name]: path }, position: at }], links: [] });
+          say(`added ${r.names[base]}`);
+          resolve(r.names[base]);
+        },
+        onClose: () => { setDialog(null); resolve(null); } }));
+    }
   };
   const removeSelected = async () => {
     const names = selectedNames();
@@ -159,7 +200,9 @@ function Designer() {
     clipboard.current = {
       blocks: net.blocks.filter((b) => names.has(b.name)).map((b) => {
         const n = nodes.find((x) => x.id === b.name);
-        return { name: b.name, type: b.type, properties: b.properties, feedback: b.feedback,
+        // Like links, feedback is kept only when its score port is inside the selection too.
+        const feedback = b.feedback && names.has(split(b.feedback.score)[0]) ? b.feedback : null;
+        return { name: b.name, type: b.type, properties: b.properties, feedback,
           position: [Math.round(n.position.x), Math.round(n.position.y)] };
       }),
       links: net.links.filter((l) => names.has(split(l.from)[0]) && names.has(split(l.to)[0])).map(({ from, to }) => ({ from, to })),
@@ -178,8 +221,10 @@ function Designer() {
     }
   };
   const autoLayout = () => {
-    const positions = layeredLayout(net.blocks, net.links);
-    attempt('move_blocks', { positions }).then(() => setTimeout(() => flow.fitView({ padding: 0.1 }), 50));
+    const sizes = Object.fromEntries(flow.getNodes().filter((n) => n.measured?.width)
+      .map((n) => [n.id, { width: n.measured.width, height: n.measured.height }]));
+    const positions = layeredLayout(net.blocks, net.links, sizes);
+    attempt('move_blocks', { positions }).then(() => setTimeout(() => flow.fitView({ padding: 0.1, maxZoom: 1 }), 50));
   };
   const save = async (path) => {
     const r = await request('save', path ? { path } : {});
@@ -239,7 +284,8 @@ function Designer() {
 
   const openSearch = (clientX, clientY, inputType = null, from = null) => {
     const r = wrapper.current.getBoundingClientRect();
-    setSearch({ at: { x: clientX - r.left, y: clientY - r.top }, flowAt: flow.screenToFlowPosition({ x: clientX, y: clientY }), inputType, from });
+    const x = Math.min(clientX - r.left, r.width - 270), y = Math.min(clientY - r.top, r.height - 310); // stays inside
+    setSearch({ at: { x: Math.max(0, x), y: Math.max(0, y) }, flowAt: flow.screenToFlowPosition({ x: clientX, y: clientY }), inputType, from });
   };
   const pickSearch = async (type) => {
     const s = search;
@@ -254,6 +300,7 @@ function Designer() {
   if (!registry || !net) {
     return <div className="loading">{message ? message.text : 'connecting to the designer…'}</div>;
   }
+  if (fitAtStart.current === null) fitAtStart.current = net.blocks.length > 0; // an empty canvas stays at 100%
   const selected = nodes.filter((n) => n.selected);
   const selectedBlock = selected.length === 1 ? net.blocks.find((b) => b.name === selected[0].id) : null;
   const fileName = net.file ? net.file.split('/').pop() : 'untitled net';
@@ -261,7 +308,7 @@ function Designer() {
     <div className="designer">
       <div className="toolbar">
         <span className="title" data-testid="file-name" title={net.file || ''}>{fileName}{net.dirty ? ' •' : ''}</span>
-        <button onClick={() => setDialog({ kind: 'open' })}>Open</button>
+        <button data-testid="open" onClick={() => setDialog({ kind: 'open' })}>Open</button>
         <button data-testid="save" onClick={() => (net.file ? save().catch((err) => say(err.message, true)) : setDialog({ kind: 'saveas' }))}>Save</button>
         <button data-testid="save-as" onClick={() => setDialog({ kind: 'saveas' })}>Save as</button>
         <span className="sep" />
@@ -269,15 +316,15 @@ function Designer() {
         <button data-testid="run-block" disabled={!selectedBlock} onClick={() => run('run_block', { block: selectedBlock.name })}>Run block</button>
         <button data-testid="cancel" disabled={!running.size} onClick={() => attempt('cancel')}>Cancel</button>
         <label title="re-run the changed block and its downstream after each property change">
-          <input type="checkbox" data-testid="auto-run" checked={autoRun}
-            onChange={(e) => { setAutoRun(e.target.checked); attempt('auto_run', { on: e.target.checked }); }} /> auto-run</label>
+          <input type="checkbox" data-testid="auto-run" checked={net.auto_run !== false}
+            onChange={(e) => attempt('auto_run', { on: e.target.checked })} /> auto-run</label>
         <span className="sep" />
         <button data-testid="undo" disabled={!net.can_undo} title="Ctrl+Z" onClick={() => attempt('undo')}>Undo</button>
         <button data-testid="redo" disabled={!net.can_redo} title="Ctrl+Y" onClick={() => attempt('redo')}>Redo</button>
-        <button onClick={autoLayout}>Layout</button>
+        <button data-testid="layout" onClick={autoLayout}>Layout</button>
         <span className="sep" />
-        <button onClick={exportLaunch}>Export launch</button>
-        <button onClick={exportGraph}>Export SVG</button>
+        <button data-testid="export-launch" onClick={exportLaunch}>Export launch</button>
+        <button data-testid="export-svg" onClick={exportGraph}>Export SVG</button>
         <label><input type="checkbox" checked={showYaml} onChange={(e) => setShowYaml(e.target.checked)} /> YAML</label>
         <span className={`message ${message?.error ? 'error' : ''}`} data-testid="message"
           title={message?.text}>{message?.text}</span>
@@ -302,7 +349,8 @@ function Designer() {
                 ?.outputs.find((p) => p.name === state.fromHandle.id);
               if (port) openSearch(point.clientX, point.clientY, port.type, `${state.fromNode.id}.${port.name}`);
             }}
-            deleteKeyCode={null} zoomOnDoubleClick={false} colorMode="dark" fitView>
+            deleteKeyCode={null} zoomOnDoubleClick={false} colorMode="dark"
+            fitView={fitAtStart.current} fitViewOptions={{ padding: 0.1, maxZoom: 1 }}>
             <Background />
             <Controls />
             <MiniMap pannable zoomable nodeColor={(n) => (running.has(n.id) ? '#f5c542' : '#8aa')} />
@@ -328,6 +376,8 @@ function Designer() {
         onClose={() => setDialog(null)} />}
       {dialog?.kind === 'saveas' && <FileDialog title="Save as" initialPath={net.file} request={request}
         onDone={(path) => save(path)} onClose={() => setDialog(null)} />}
+      {dialog?.kind === 'choose' && <FileDialog title={`Choose ${dialog.title}`} request={request}
+        initialPath={net.file} onDone={dialog.onDone} onClose={dialog.onClose} />}
       {dialog?.kind === 'export' && <ExportDialog {...dialog} onClose={() => setDialog(null)} />}
     </div>
   );

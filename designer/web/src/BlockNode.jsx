@@ -54,7 +54,7 @@ export const BlockNode = memo(function BlockNode({ data, selected }) {
           })}
         </div>
       </div>
-      {[...watched].filter((k) => k.startsWith(`${block.name}.`) && previews[k]).map((k) => (
+      {[...watched].filter((k) => previews[k]).map((k) => (
         <div key={k} className="preview" data-port={k}>
           <div className="preview-port">{k.slice(block.name.length + 1)}</div>
           <Preview port={k} data={previews[k]} />

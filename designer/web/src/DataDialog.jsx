@@ -10,13 +10,14 @@ export function DataDialog({ port, type, data, onClose }) {
   let body = <div className="waiting" data-testid="data-waiting">waiting for a value of {port} (run the net)</div>;
   if (data) {
     const { header, value } = data;
-    if (header.format === 'raw') body = <ImageView header={header} payload={data.payload} />;
+    if (header.format === 'none') body = <div className="waiting">{port} has no value{header.error ? `: ${header.error}` : ''}</div>;
+    else if (header.format === 'raw') body = <ImageView header={header} payload={data.payload} />;
     else if (is3D(header)) body = <Scene3D items={items} />;
     else if (value && Array.isArray(value.scores)) body = <TracePlot trace={value} width={760} height={400} />;
     else body = <pre className="data-json">{JSON.stringify(value, null, 2)}</pre>;
   }
   return (
-    <Modal title={`${port} · ${type}${data ? ` · revision ${data.header.revision}` : ''}`} onClose={onClose} wide
+    <Modal title={`${port} · ${type}${data ? ` · run ${data.header.run ?? data.header.revision}` : ''}`} onClose={onClose} wide
       testid="data-dialog">
       {body}
     </Modal>

@@ -1,14 +1,15 @@
-import React from 'react';
+import React, { useLayoutEffect, useRef } from 'react';
 
 // What a watched output shows on its node (paper Fig. 3.3): thumbnails, numbers, frames, traces.
 export function Preview({ port, data }) {
-  const { header, value, url } = data;
-  if (url) {
-    return <img className="preview-image" src={url} alt={port} data-revision={header.revision}
-      onLoad={() => noteShown(port, header.revision)} />;
+  const { header, value } = data;
+  const revision = header.run ?? header.revision;
+  if (header.format === 'none') {
+    return <div className="preview-value none" data-revision={revision}>no value{header.error ? `: ${header.error}` : ''}</div>;
   }
-  const shown = (element) => <div className="preview-value" ref={() => noteShown(port, header.revision)}
-    data-revision={header.revision}>{element}</div>;
+  if (data.bitmap) return <Thumbnail port={port} bitmap={data.bitmap} revision={revision} />;
+  const shown = (element) => <div className="preview-value" ref={(e) => e && noteShown(port, revision)}
+    data-revision={revision}>{element}</div>;
   if (header.format === 'xyzrgb') return shown(`${Math.floor(data.payload.byteLength / 16)} points`);
   if (value && Array.isArray(value.scores)) return shown(<TracePlot trace={value} />);
   if (value && typeof value.data === 'number') return shown(<b>{round(value.data)}</b>);
@@ -20,8 +21,22 @@ export function Preview({ port, data }) {
   return shown(<pre>{summary(value)}</pre>);
 }
 
+function Thumbnail({ port, bitmap, revision }) {
+  const canvas = useRef(null);
+  useLayoutEffect(() => {
+    canvas.current.getContext('2d').drawImage(bitmap, 0, 0);
+    noteShown(port, revision);
+  }, [bitmap]);
+  return <canvas ref={canvas} className="preview-image" width={bitmap.width} height={bitmap.height}
+    data-revision={revision} title={port} />;
+}
+
 function round(v) {
   return typeof v === 'number' ? (Math.abs(v) >= 100 ? v.toFixed(1) : v.toFixed(3)) : String(v);
+}
+
+function precise(v) {
+  return typeof v === 'number' ? String(Number(v.toPrecision(4))) : String(v);
 }
 
 function summary(value) {
@@ -37,12 +52,15 @@ function noteShown(port, revision) {
 }
 
 // Feedback trace: score over the tried values, the chosen value marked.
-export function TracePlot({ trace, width = 220, height = 110 }) {
+export function TracePlot({ trace, width = 240, height = 130 }) {
   const xs = trace.values || [], ys = trace.scores || [];
   const pad = 22;
   const finite = ys.filter(Number.isFinite);
   const [x0, x1] = [Math.min(...xs), Math.max(...xs)];
-  const [y0, y1] = finite.length ? [Math.min(...finite, 0), Math.max(...finite)] : [0, 1];
+  // The scores' own range (a nearly flat curve still shows its maximum), 5% margin.
+  const [lo, hi] = finite.length ? [Math.min(...finite), Math.max(...finite)] : [0, 1];
+  const margin = (hi - lo) * 0.05 || Math.abs(hi) * 0.05 || 0.5;
+  const [y0, y1] = [lo - margin, hi + margin];
   const sx = (x) => pad + ((x - x0) / ((x1 - x0) || 1)) * (width - pad - 6);
   const sy = (y) => height - pad + 4 - ((y - y0) / ((y1 - y0) || 1)) * (height - pad - 6);
   const points = xs.map((x, i) => (Number.isFinite(ys[i]) ? `${sx(x)},${sy(ys[i])}` : null)).filter(Boolean);
@@ -55,9 +73,11 @@ export function TracePlot({ trace, width = 220, height = 110 }) {
       {Number.isFinite(chosen) && <line x1={sx(chosen)} x2={sx(chosen)} y1={2} y2={height - pad + 2} className="plot-chosen" />}
       <text x={pad} y={height - 8} className="plot-label">{round(x0)}</text>
       <text x={width - 6} y={height - 8} textAnchor="end" className="plot-label">{round(x1)}</text>
-      <text x={2} y={10} className="plot-label">{round(y1)}</text>
-      {Number.isFinite(chosen) && <text x={sx(chosen) + 3} y={12} className="plot-chosen-label">
-        {round(chosen)} → {round(trace.chosen_score)}</text>}
+      <text x={2} y={10} className="plot-label">{precise(hi)}</text>
+      <text x={2} y={height - pad} className="plot-label">{precise(lo)}</text>
+      {Number.isFinite(chosen) && <text x={sx(chosen) + (sx(chosen) > width / 2 ? -3 : 3)} y={height - pad - 4}
+        textAnchor={sx(chosen) > width / 2 ? 'end' : 'start'} className="plot-chosen-label">
+        {round(chosen)} → {precise(trace.chosen_score)}</text>}
     </svg>
   );
 }

@@ -125,14 +125,14 @@ function FeedbackEditor({ block, prop, net, request }) {
         onChange={(e) => { setOn(e.target.checked); if (!e.target.checked && current) apply(null); }} />
         feedback</label>
       {on && <div className="feedback-fields">
-        <label><input type="checkbox" checked={useValues}
+        <label className="wide check"><input type="checkbox" checked={useValues}
           onChange={(e) => setFb(e.target.checked ? { ...fb, values: [fb.from, fb.to] } : (({ values, ...rest }) => rest)(fb))} />
           list of values</label>
         {useValues
-          ? <label>values <input type="text" value={fb.values.join(', ')}
+          ? <label className="wide">values <input type="text" value={fb.values.join(', ')}
             onChange={(e) => setFb({ ...fb, values: e.target.value.split(',').map((s) => number(s.trim())) })} /></label>
           : <>{field('from')}{field('to')}{field('step')}</>}
-        <label>score <select data-testid="feedback-score" value={fb.score}
+        <label className="wide">score <select data-testid="feedback-score" value={fb.score}
           onChange={(e) => setFb({ ...fb, score: e.target.value })}>
           {!scores.includes(fb.score) && <option value={fb.score}>{fb.score || '(no Float64 port downstream)'}</option>}
           {scores.map((s) => <option key={s} value={s}>{s}</option>)}
@@ -141,10 +141,10 @@ function FeedbackEditor({ block, prop, net, request }) {
           <option>maximize</option><option>minimize</option></select></label>
         <label>search <select value={fb.search} onChange={(e) => setFb({ ...fb, search: e.target.value })}>
           <option>exhaustive</option><option>coarse_to_fine</option></select></label>
-        <label><input type="checkbox" checked={!!fb.parallel}
+        <label className="check"><input type="checkbox" checked={!!fb.parallel}
           onChange={(e) => setFb({ ...fb, parallel: e.target.checked })} /> parallel</label>
-        <button data-testid="feedback-apply" onClick={() => apply(toSend())}>apply feedback</button>
-        {error && <div className="error" data-testid="feedback-error">{error}</div>}
+        <button className="wide" data-testid="feedback-apply" onClick={() => apply(toSend())}>apply feedback</button>
+        {error && <div className="error wide" data-testid="feedback-error">{error}</div>}
       </div>}
     </div>
   );

@@ -7,6 +7,9 @@ export function flowFromNet(net, colors, oldNodes = [], oldEdges = []) {
   const nodes = net.blocks.map((b) => {
     const kept = old.get(b.name);
     const p = b.position || (kept && [kept.position.x, kept.position.y]) || layout[b.name];
+    // An unchanged node stays the same object: the canvas keeps its measured state (and a link
+    // being dragged meanwhile keeps its handles).
+    if (kept && kept.position.x === p[0] && kept.position.y === p[1]) return kept;
     return { ...(kept || {}), id: b.name, type: 'block', position: { x: p[0], y: p[1] }, data: kept?.data || {} };
   });
   const selectedEdges = new Set(oldEdges.filter((e) => e.selected).map((e) => e.id));

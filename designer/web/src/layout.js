@@ -1,6 +1,7 @@
-// Automatic layout for nets without positions: columns by longest path from the sources,
-// rows in net-file order. Returns {name: [x, y]}.
-export function layeredLayout(blocks, links, spacing = { x: 300, y: 200 }) {
+// Automatic layout: columns by longest path from the sources, rows in net-file order. With the
+// nodes' measured sizes (previews make them tall) columns and rows are spaced to fit; without,
+// a default size is assumed. Returns {name: [x, y]}.
+export function layeredLayout(blocks, links, sizes = {}, gap = { x: 80, y: 40 }) {
   const layer = new Map(blocks.map((b) => [b.name, 0]));
   // Longest path by relaxation; nets are acyclic, so |blocks| rounds suffice.
   for (let round = 0; round < blocks.length; ++round) {
@@ -14,13 +15,18 @@ export function layeredLayout(blocks, links, spacing = { x: 300, y: 200 }) {
     }
     if (!changed) break;
   }
-  const rows = new Map();
+  const size = (name) => sizes[name] || { width: 220, height: 160 };
+  const columns = [];
+  for (const b of blocks) (columns[layer.get(b.name)] ||= []).push(b.name);
   const positions = {};
-  for (const b of blocks) {
-    const column = layer.get(b.name);
-    const row = rows.get(column) || 0;
-    rows.set(column, row + 1);
-    positions[b.name] = [column * spacing.x, row * spacing.y];
+  let x = 0;
+  for (const column of columns.filter(Boolean)) {
+    let y = 0;
+    for (const name of column) {
+      positions[name] = [x, y];
+      y += size(name).height + gap.y;
+    }
+    x += Math.max(...column.map((name) => size(name).width)) + gap.x;
   }
   return positions;
 }

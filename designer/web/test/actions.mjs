@@ -9,6 +9,8 @@ const handleSel = (key, side) => {
 
 async function centre(page, selector) {
   const element = await page.waitForSelector(selector, { visible: true, timeout: LONG });
+  // Scrolls lists (the block browser) but never the canvas, whose content it would shift.
+  await element.evaluate((e) => { if (!e.closest('.react-flow')) e.scrollIntoView({ block: 'nearest' }); });
   const box = await element.boundingBox();
   return { x: box.x + box.width / 2, y: box.y + box.height / 2 };
 }
@@ -20,13 +22,21 @@ export async function blockNames(page) {
 // Drags a block from the browser onto the canvas at page coordinates; returns its new name.
 export async function dragBlockIn(page, type, x, y) {
   const before = new Set(await blockNames(page));
+  await dragBlock(page, type, x, y);
+  return newBlock(page, before, type);
+}
+
+export async function newBlock(page, before, what) {
+  return until(`block ${what} on the canvas`, async () => (await blockNames(page)).find((n) => !before.has(n)));
+}
+
+export async function dragBlock(page, type, x, y) {
   const from = await centre(page, `.block-entry[data-type="${type}"] .entry-name`);
   await page.mouse.move(from.x, from.y);
   await page.mouse.down();
   await page.mouse.move(from.x + 40, from.y + 10, { steps: 4 });
   await page.mouse.move(x, y, { steps: 10 });
   await page.mouse.up();
-  return until(`block ${type} on the canvas`, async () => (await blockNames(page)).find((n) => !before.has(n)));
 }
 
 // Drags from an output handle to an input handle ("block.port" each).
@@ -38,6 +48,12 @@ export async function connect(page, from, to) {
   await page.mouse.move((a.x + b.x) / 2, (a.y + b.y) / 2 + 20, { steps: 6 });
   await page.mouse.move(b.x, b.y, { steps: 6 });
   await page.mouse.up();
+}
+
+// Links as a user does: drag, then see the link drawn before going on.
+export async function link(page, from, to) {
+  await connect(page, from, to);
+  await until(`the link ${from} -> ${to}`, async () => (await linkIds(page)).includes(`${from}->${to}`));
 }
 
 export async function linkIds(page) {

@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { LONG, copyConfig, launchBrowser, openDesigner, run, startDesigner, tempDir, until, imagenets } from './harness.mjs';
 import {
-  allStats, blockNames, click, connect, dragBlockIn, linkIds, message, nodeSel, select, setProperty, stats, watch,
+  allStats, blockNames, click, connect, dragBlock, link, dragBlockIn, newBlock, linkIds, message, nodeSel, select, setProperty, stats, watch,
 } from './actions.mjs';
 
 let browser;
@@ -53,11 +53,22 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
   const designer = await startDesigner({ roots: [dir] });
   t.after(() => designer.stop());
   const page = await openDesigner(browser, designer.url);
+  // The steps build on each other: after a failed one the rest are skipped, not timed out.
+  let failed = false;
+  const step = (name, fn) => t.test(name, async (s) => {
+    if (failed) { s.skip('an earlier step failed'); return; }
+    try { await fn(); } catch (e) {
+      failed = true;
+      const shot = path.join(dir, 'failed-step.png');
+      await page.screenshot({ path: shot }).catch(() => {});
+      throw new Error(`${e.message}\n(page at the failure: ${shot}; message: ${JSON.stringify(await message(page).catch(() => null))})`, { cause: e });
+    }
+  });
   const canvas = await (await page.$('.canvas')).boundingBox();
   let source, gray, threshold, quality, executor;
   const at = (fx, fy) => [canvas.x + fx * canvas.width, canvas.y + fy * canvas.height];
 
-  await t.test('finds Grayscale by search and by output type', async () => {
+  await step('finds Grayscale by search and by output type', async () => {
     await page.type('[data-testid="block-search"]', 'grayscale');
     await until('only matching entries', async () => {
       const types = await page.$$eval('.block-entry', (es) => es.map((e) => e.dataset.type));
@@ -75,25 +86,25 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     await page.select('[data-testid="filter-input"]', '');
   });
 
-  await t.test('drags ImageFileSource, Grayscale, Threshold, SegmentationQuality in and links them', async () => {
+  await step('drags ImageFileSource, Grayscale, Threshold, SegmentationQuality in and links them', async () => {
     source = await dragBlockIn(page, 'imagenets/ImageFileSource', ...at(0.12, 0.3));
     gray = await dragBlockIn(page, 'imagenets/Grayscale', ...at(0.4, 0.3));
-    threshold = await dragBlockIn(page, 'imagenets/Threshold', ...at(0.68, 0.15));
+    threshold = await dragBlockIn(page, 'imagenets/Threshold', ...at(0.68, 0.2));
     quality = await dragBlockIn(page, 'imagenets/SegmentationQuality', ...at(0.68, 0.55));
     await select(page, source);
     await setProperty(page, 'path', image);
     await until('the path set', async () => (await page.$eval('[data-testid="yaml"]', (y) => y.value)).includes('gradient.png'));
-    await connect(page, `${source}.image`, `${gray}.image`);
-    await connect(page, `${gray}.image`, `${threshold}.image`);
-    await connect(page, `${gray}.image`, `${quality}.gray`);
-    await connect(page, `${threshold}.image`, `${quality}.binary`);
+    await link(page, `${source}.image`, `${gray}.image`);
+    await link(page, `${gray}.image`, `${threshold}.image`);
+    await link(page, `${gray}.image`, `${quality}.gray`);
+    await link(page, `${threshold}.image`, `${quality}.binary`);
     await until('four links', async () => (await linkIds(page)).length === 4);
     assert.deepEqual(await linkIds(page), [
       `${gray}.image->${quality}.gray`, `${gray}.image->${threshold}.image`,
       `${source}.image->${gray}.image`, `${threshold}.image->${quality}.binary`].sort());
   });
 
-  await t.test('a link between different types is refused with the engine\'s reason', async () => {
+  await step('a link between different types is refused with the engine\'s reason', async () => {
     const [x, y] = at(0.3, 0.75);
     await page.mouse.click(...at(0.3, 0.9)); // clears the selection
     await page.mouse.click(x, y, { clickCount: 2 });
@@ -111,7 +122,7 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     await until('the camera block removed', async () => !(await blockNames(page)).includes(camera));
   });
 
-  await t.test('Ctrl+Enter runs the net; a property change re-runs only the block and its downstream', async () => {
+  await step('Ctrl+Enter runs the net; a property change re-runs only the block and its downstream', async () => {
     await page.mouse.click(...at(0.3, 0.9));
     await page.keyboard.down('Control');
     await page.keyboard.press('Enter');
@@ -124,7 +135,7 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     assert.equal(s[gray].runs, 1);
   });
 
-  await t.test('an invalid property value is refused with the engine\'s error', async () => {
+  await step('an invalid property value is refused with the engine\'s error', async () => {
     await setProperty(page, 'threshold', 999);
     const error = await page.waitForSelector('[data-testid="property-error"]', { timeout: LONG });
     const text = await error.evaluate((e) => e.textContent);
@@ -132,14 +143,14 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     assert.match(text, /999/);
   });
 
-  await t.test('runs one block', async () => {
+  await step('runs one block', async () => {
     await select(page, gray);
     await click(page, '[data-testid="run-block"]');
     await untilStats(page, 'gray ran once more', (s) => s[gray].runs === 2);
     assert.equal((await stats(page, source)).runs, 1);
   });
 
-  await t.test('the data dialog reads known pixels', async () => {
+  await step('the data dialog reads known pixels', async () => {
     await click(page, `button.open-data[data-port="${source}.image"]`);
     const colour = await readPixel(page, 5, 7);
     assert.match(colour, /bgr8|rgb8/);
@@ -152,7 +163,7 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     await closeDialog(page);
   });
 
-  await t.test('feedback on the threshold shows the trace plot', async () => {
+  await step('feedback on the threshold shows the trace plot', async () => {
     await select(page, threshold);
     const property = '.property[data-property="threshold"]';
     await click(page, `${property} [data-testid="feedback-on"]`);
@@ -170,12 +181,17 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     assert.ok(await page.$(`${nodeSel(threshold)} .plot-chosen`), 'the chosen value is marked');
   });
 
-  await t.test('opens a sub-net', async () => {
-    executor = await dragBlockIn(page, 'imagenets/Executor', ...at(0.4, 0.7));
-    await select(page, executor);
-    await setProperty(page, 'net', path.join(config, 'nets/segmentation_subnet.yaml'));
+  await step('opens a sub-net', async () => {
+    // An Executor cannot exist without its net: dropping one asks for the file.
+    const before = new Set(await blockNames(page));
+    await dragBlock(page, 'imagenets/Executor', ...at(0.4, 0.7));
+    const field = await page.waitForSelector('[data-testid="file-path"]', { timeout: LONG });
+    await field.evaluate((i) => i.select());
+    await page.keyboard.type(path.join(config, 'nets/segmentation_subnet.yaml'));
+    await click(page, '[data-testid="file-ok"]');
+    executor = await newBlock(page, before, 'imagenets/Executor');
     await page.waitForSelector(`${nodeSel(executor)} [data-handleid="image"]`, { timeout: LONG });
-    await connect(page, `${source}.image`, `${executor}.image`);
+    await link(page, `${source}.image`, `${executor}.image`);
     await until('five links', async () => (await linkIds(page)).length === 5);
     await click(page, `${nodeSel(executor)} button[title="open the sub-net"]`);
     await page.waitForSelector('[data-testid="subnet-view"] .react-flow__node', { timeout: LONG });
@@ -184,7 +200,7 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     await closeDialog(page);
   });
 
-  await t.test('undo and redo', async () => {
+  await step('undo and redo', async () => {
     const links = await linkIds(page);
     await page.mouse.click(...at(0.3, 0.9));
     await page.keyboard.down('Control');
@@ -196,7 +212,7 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     assert.deepEqual(await linkIds(page), links);
   });
 
-  await t.test('copy and paste keep the links inside the selection; undo removes the pasted blocks', async () => {
+  await step('copy and paste keep the links inside the selection; undo removes the pasted blocks', async () => {
     const blocks = await blockNames(page);
     const links = await linkIds(page);
     await select(page, gray);
@@ -223,25 +239,33 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     assert.deepEqual(await linkIds(page), links);
   });
 
-  await t.test('a link dropped on empty canvas offers only blocks taking its type', async () => {
-    const from = await (await page.waitForSelector(`.react-flow__handle.source[data-nodeid="${quality}"][data-handleid="score"]`)).boundingBox();
-    const [x, y] = at(0.9, 0.85);
+  await step('a link dropped on empty canvas offers only blocks taking its type', async () => {
+    const from = await (await page.waitForSelector(`.react-flow__handle.source[data-nodeid="${gray}"][data-handleid="image"]`)).boundingBox();
+    const [x, y] = at(0.25, 0.08); // empty canvas
     await page.mouse.move(from.x + from.width / 2, from.y + from.height / 2);
     await page.mouse.down();
     await page.mouse.move(x, y, { steps: 10 });
     await page.mouse.up();
     await page.waitForSelector('[data-testid="block-search-popup"] .search-result', { timeout: LONG });
     const offered = await page.$$eval('[data-testid="block-search-popup"] .search-result', (rs) => rs.map((r) => r.dataset.type).sort());
-    const listed = run(imagenets, ['blocks', '--input-type', 'std_msgs/Float64']);
+    const listed = run(imagenets, ['blocks', '--input-type', 'sensor_msgs/Image']);
     assert.equal(listed.code, 0, listed.out);
     const expected = [...listed.out.matchAll(/^ {2}(\S+) - /gm)].map((m) => m[1]).sort();
-    assert.ok(expected.length > 0, listed.out);
+    assert.ok(expected.includes('imagenets/Threshold') && !expected.includes('imagenets/ImageFileSource'), listed.out);
     assert.deepEqual(offered, expected);
-    await page.keyboard.press('Escape');
-    await until('the popup closed', async () => !(await page.$('[data-testid="block-search-popup"]')));
+    // Picking one adds it already linked.
+    const links = await linkIds(page);
+    const before = new Set(await blockNames(page));
+    await page.keyboard.type('GaussianBlur');
+    await page.keyboard.press('Enter');
+    const blur = await newBlock(page, before, 'imagenets/GaussianBlur');
+    await until('the new block linked', async () => (await linkIds(page)).includes(`${gray}.image->${blur}.image`));
+    await select(page, blur);
+    await page.keyboard.press('Delete');
+    await until('the blur removed with its link', async () => (await linkIds(page)).length === links.length);
   });
 
-  await t.test('saves; the engine loads and runs the saved net as drawn', async () => {
+  await step('saves; the engine loads and runs the saved net as drawn', async () => {
     const file = path.join(dir, 'drawn.yaml');
     await click(page, '[data-testid="save-as"]');
     const field = await page.waitForSelector('[data-testid="file-path"]', { timeout: LONG });
@@ -298,4 +322,68 @@ test('the 3D view draws the stereo point cloud', { timeout: 300000 }, async (t) 
   }));
   assert.ok(drawn > 5000, `${drawn} pixels differ from the background`);
   assert.deepEqual(page.errors, []);
+});
+
+test('files: open, the YAML pane, export; a second tab sees the same net', { timeout: 300000 }, async (t) => {
+  const dir = tempDir('files');
+  const config = copyConfig(dir);
+  const designer = await startDesigner({ roots: [dir] });
+  t.after(() => designer.stop());
+  const page = await openDesigner(browser, designer.url);
+
+  // Open through the file dialog.
+  await click(page, '[data-testid="open"]');
+  const field = await page.waitForSelector('[data-testid="file-path"]', { timeout: LONG });
+  await field.evaluate((i) => i.select());
+  await page.keyboard.type(path.join(config, 'nets/threshold_demo.yaml'));
+  await click(page, '[data-testid="file-ok"]');
+  await until('the opened net', async () => (await blockNames(page)).sort().join() === 'blur,gray,source,threshold');
+  assert.equal(await page.$eval('[data-testid="file-name"]', (e) => e.textContent), 'threshold_demo.yaml');
+
+  // A bad edit in the YAML pane: refused with the line, which is selected; nothing changes.
+  const yaml = await page.$eval('[data-testid="yaml"]', (y) => y.value);
+  const badLine = yaml.split('\n').indexOf('  blur:') + 1; // the engine names the block's line
+  await page.$eval('[data-testid="yaml"]', (y) => { y.focus(); y.setSelectionRange(0, 0); });
+  const edit = async (text) => {
+    await page.$eval('[data-testid="yaml"]', (y) => y.select());
+    await page.keyboard.press('Backspace');
+    // Typing the whole file is slow; paste-like input through the editor's own change event.
+    await page.$eval('[data-testid="yaml"]', (y, value) => {
+      const setter = Object.getOwnPropertyDescriptor(HTMLTextAreaElement.prototype, 'value').set;
+      setter.call(y, value);
+      y.dispatchEvent(new Event('input', { bubbles: true }));
+    }, text);
+    await click(page, '[data-testid="yaml-apply"]');
+  };
+  await edit(yaml.replace('type: imagenets/GaussianBlur', 'type: imagenets/NoSuchBlock'));
+  const error = await (await page.waitForSelector('[data-testid="yaml-error"]', { timeout: LONG })).evaluate((e) => e.textContent);
+  assert.match(error, /NoSuchBlock/);
+  assert.match(error, new RegExp(`:${badLine}:`));
+  const selectedLine = await page.$eval('[data-testid="yaml"]', (y) => y.value.slice(0, y.selectionStart).split('\n').length);
+  assert.equal(selectedLine, badLine);
+  assert.deepEqual((await blockNames(page)).sort(), ['blur', 'gray', 'source', 'threshold']);
+
+  // A good edit replaces the net; a second tab shows the same.
+  const second = await openDesigner(browser, designer.url);
+  await edit(yaml.replace('threshold: 60', 'threshold: 77').replace('  blur:\n', '  smooth:\n').replace(/blur\./g, 'smooth.'));
+  await until('the edited net', async () => (await blockNames(page)).includes('smooth'));
+  await until('the edited net in the second tab', async () => (await blockNames(second)).sort().join() === 'gray,smooth,source,threshold');
+  assert.match(await second.$eval('[data-testid="yaml"]', (y) => y.value), /threshold: 77/);
+  // ... and an edit in the second tab shows in the first.
+  await select(second, 'smooth');
+  await setProperty(second, 'kernel_size', 7);
+  await until('the property in the first tab', async () => /kernel_size: 7/.test(await page.$eval('[data-testid="yaml"]', (y) => y.value)));
+
+  // Exports.
+  await click(page, '[data-testid="export-launch"]');
+  const launch = await (await page.waitForSelector('[data-testid="export-dialog"] .export-text', { timeout: LONG })).evaluate((e) => e.textContent);
+  assert.match(launch, /<launch>/);
+  assert.match(launch, /nodelet/);
+  assert.match(launch, /smooth/);
+  await page.keyboard.press('Escape');
+  await click(page, '[data-testid="export-svg"]');
+  await page.waitForSelector('[data-testid="export-dialog"] .export-svg svg', { timeout: LONG });
+  const svgText = await page.$eval('[data-testid="export-dialog"] .export-svg svg', (s) => s.textContent);
+  for (const name of ['source', 'gray', 'smooth', 'threshold']) assert.match(svgText, new RegExp(name));
+  assert.deepEqual([...page.errors, ...second.errors], []);
 });

@@ -11,11 +11,11 @@ const require = createRequire(import.meta.url);
 const puppeteer = require('puppeteer-core');
 
 export const source = process.env.IMAGENETS_SOURCE || path.resolve(new URL('../../..', import.meta.url).pathname);
-export const imagenets = process.env.IMAGENETS_BIN || path.join(source, 'build/devel/lib/imagenets/imagenets');
+export const imagenets = process.env.IMAGENETS_BIN || path.join(source, 'devel/bin/imagenets');
 const chromium = process.env.CHROMIUM || '/usr/bin/chromium';
 
 // Generous: the machine may be busy with builds of other work.
-export const LONG = 60000;
+export const LONG = Number(process.env.LONG || 60000);
 
 export function tempDir(prefix) {
   return fs.mkdtempSync(path.join(os.tmpdir(), `designer-${prefix}-`));
@@ -92,8 +92,9 @@ export async function launchBrowser() {
 }
 
 // A page on the designer that fails the test on any page error; resolves once the net is shown.
-export async function openDesigner(browser, url) {
+export async function openDesigner(browser, url, beforeLoad = async () => {}) {
   const page = await browser.newPage();
+  await beforeLoad(page);
   await page.setViewport({ width: 1600, height: 1000 });
   page.errors = [];
   page.on('pageerror', (e) => page.errors.push(e.message));

@@ -30,8 +30,14 @@ try {
   for (const port of ['source.image', 'gray.image', 'threshold.image', 'threshold.feedback_trace', 'detector.confidence', 'detector.pose']) {
     await watch(fig.page, port);
   }
+  // The previews made the nodes tall: lay the net out again until no two nodes overlap.
+  await click(fig.page, '[data-testid="layout"]');
+  await until('nodes apart', () => fig.page.evaluate(() => {
+    const boxes = [...document.querySelectorAll('.react-flow__node')].map((n) => n.getBoundingClientRect());
+    return boxes.every((a, i) => boxes.every((b, j) => i === j || a.right <= b.left || b.right <= a.left
+      || a.bottom <= b.top || b.bottom <= a.top));
+  }));
   await click(fig.page, '.react-flow__node[data-id="threshold"] .block-name');
-  await click(fig.page, '.react-flow__controls-fitview');
   await new Promise((r) => setTimeout(r, 500)); // the fit-view animation
   await fig.page.screenshot({ path: path.join(out, 'designer.png') });
   await fig.designer.stop();
