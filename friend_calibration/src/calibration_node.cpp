@@ -101,6 +101,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   calibration_file_ = pnh_.param<std::string>("calibration_file", defaultCalibrationFile());
   default_redundancy_ = pnh_.param("redundancy", 5);
   default_method_ = pnh_.param<std::string>("method", "joint");
+  server_timeout_ = pnh_.param("server_timeout", 10.0);
   camera_timeout_ = pnh_.param("camera_timeout", 3.0);
   motion_timeout_ = pnh_.param("motion_timeout", 60.0);
   speed_scale_ = pnh_.param("speed_scale", 1.0);
@@ -115,8 +116,8 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
              model_.description().marker_size);
   }
 
-  arm_ = std::make_unique<MoveClient>(nh_, pnh_.param<std::string>("arm_action", "arm/move_joints"), false);
-  head_ = std::make_unique<MoveClient>(nh_, pnh_.param<std::string>("head_action", "head/move_joints"), false);
+  arm_action_ = pnh_.param<std::string>("arm_action", "arm/move_joints");
+  head_action_ = pnh_.param<std::string>("head_action", "head/move_joints");
   joint_sub_ = nh_.subscribe(pnh_.param<std::string>("joint_states", "joint_states"), 20,
                              &CalibrationNode::onJointStates, this);
   const std::string stereo = pnh_.param<std::string>("stereo_namespace", "stereo");
@@ -319,35 +320,35 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
   return res;
 }
 
-void CalibrationNode::moveBoth(const CalibrationPose& pose, int sample, const Hooks& hooks) {
+void CalibrationNode::moveBoth(Motion& motion, const CalibrationPose& pose, int sample, const Hooks& hooks) {
   imagenets::MoveJointsGoal arm_goal, head_goal;
   arm_goal.positions = pose.arm;
   arm_goal.speed_scale = speed_scale_;
   head_goal.positions = pose.head;
   head_goal.speed_scale = speed_scale_;
-  arm_->sendGoal(arm_goal);
-  head_->sendGoal(head_goal);
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(motion_timeout_);
-  auto done = [](MoveClient& c) { return c.getState().isDone(); };
-  while (!(done(*arm_) && done(*head_))) {
-    if (hooks.cancelled && hooks.cancelled()) {
-      arm_->cancelGoal();
-      head_->cancelGoal();
-      throw std::runtime_error("cancelled during the motion of sample " + std::to_string(sample + 1));
-    }
-    if (ros::WallTime::now() > deadline) {
-      arm_->cancelGoal();
-      head_->cancelGoal();
-      throw std::runtime_error("motion of sample " + std::to_string(sample + 1) + " did not finish within " +
-                               std::to_string(motion_timeout_) + " s");
-    }
-    ros::WallDuration(0.005).sleep();
+  MoveClient& arm = motion.arm;
+  MoveClient& head = motion.head;
+  arm.sendGoal(arm_goal);
+  head.sendGoal(head_goal);
+  bool cancelled = false;
+  const bool finished = motion.queue.waitUntil(
+      [&] {
+        cancelled = hooks.cancelled && hooks.cancelled();
+        return cancelled || (arm.getState().isDone() && head.getState().isDone());
+      },
+      motion_timeout_);
+  if (cancelled || !finished) {
+    arm.cancelGoal();
+    head.cancelGoal();
+    if (cancelled) throw std::runtime_error("cancelled during the motion of sample " + std::to_string(sample + 1));
+    throw std::runtime_error("motion of sample " + std::to_string(sample + 1) + " did not finish within " +
+                             std::to_string(motion_timeout_) + " s");
   }
-  for (auto* c : {arm_.get(), head_.get()}) {
+  for (auto* c : {&arm, &head}) {
     const auto state = c->getState();
     if (state != actionlib::SimpleClientGoalState::SUCCEEDED) {
       const auto result = c->getResult();
-      const std::string which = c == arm_.get() ? "arm" : "head";
+      const std::string which = c == &arm ? "arm" : "head";
       throw std::runtime_error(which + " goal " + state.toString() + " at sample " + std::to_string(sample + 1) + ": " +
                                (result && !result->message.empty() ? result->message : state.getText()));
     }
@@ -424,10 +425,13 @@ Sample CalibrationNode::measure(const StereoPair& pair, const sensor_msgs::Joint
 }
 
 std::vector<Sample> CalibrationNode::collectSamples(int n, const std::string& method, const Hooks& hooks) {
-  for (auto* c : {arm_.get(), head_.get()}) {
-    if (!c->waitForServer(ros::Duration(2.0))) {
-      throw std::runtime_error(std::string(c == arm_.get() ? "arm" : "head") +
-                               " action server is not available (is the robot / friend_sim running?)");
+  Motion motion(nh_, arm_action_, head_action_);
+  for (auto* c : {&motion.arm, &motion.head}) {
+    if (!motion.queue.waitUntil([c] { return c->isServerConnected(); }, server_timeout_)) {
+      std::ostringstream why;
+      why << (c == &motion.arm ? "arm" : "head") << " action server is not available after " << server_timeout_
+          << " s (is the robot / friend_sim running?)";
+      throw std::runtime_error(why.str());
     }
   }
   const auto poses = calibrationPoses(model_, n, method);
@@ -439,9 +443,9 @@ std::vector<Sample> CalibrationNode::collectSamples(int n, const std::string& me
       // too: the same approach whatever pose the robot starts from).
       CalibrationPose away = poses[k];
       away.arm[3] -= 10 * kDeg;
-      moveBoth(away, k, hooks);
+      moveBoth(motion, away, k, hooks);
     }
-    moveBoth(poses[k], k, hooks);
+    moveBoth(motion, poses[k], k, hooks);
     if (settle_time_ > 0) ros::WallDuration(settle_time_).sleep();
     const ros::Time after = ros::Time::now();
     if (hooks.progress) hooks.progress(k + 1, n, "acquiring");

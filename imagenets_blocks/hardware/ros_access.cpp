@@ -9,6 +9,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include "imagenets/MoveJointsAction.h"
+#include "imagenets/calling_thread_queue.h"
 
 namespace imagenets {
 namespace blocks {
@@ -30,8 +31,10 @@ void ensureRosNode() {
 sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_msgs::JointState& target,
                                       double speed_scale, double server_timeout, double motion_timeout) {
   ensureRosNode();
-  actionlib::SimpleActionClient<imagenets::MoveJointsAction> client(action, true);
-  if (!client.waitForServer(ros::Duration(server_timeout))) {
+  // Called back only while this thread waits below (calling_thread_queue.h says why).
+  CallingThreadQueue queue;
+  actionlib::SimpleActionClient<imagenets::MoveJointsAction> client(queue.nodeHandle(), action, false);
+  if (!queue.waitUntil([&client] { return client.isServerConnected(); }, server_timeout)) {
     throw BlockError("action server '" + ros::names::resolve(action) + "' not available after " +
                      std::to_string(server_timeout) + " s (property server_timeout)");
   }
@@ -40,7 +43,7 @@ sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_ms
   goal.positions = target.position;
   goal.speed_scale = speed_scale;
   client.sendGoal(goal);
-  if (!client.waitForResult(ros::Duration(motion_timeout))) {
+  if (!queue.waitUntil([&client] { return client.getState().isDone(); }, motion_timeout)) {
     client.cancelGoal();
     throw BlockError("'" + ros::names::resolve(action) + "' did not finish within " + std::to_string(motion_timeout) +
                      " s (property motion_timeout); goal canceled");

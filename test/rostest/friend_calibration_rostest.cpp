@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <mutex>
 #include <sstream>
 
 #include <actionlib/client/simple_action_client.h>
@@ -21,6 +20,7 @@
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"
 #include "imagenets/blocks/frames.h"
+#include "imagenets/calling_thread_queue.h"
 #include "rostest_util.h"
 
 namespace {
@@ -189,34 +189,26 @@ TEST_F(FriendCalibration, FailuresKeepThePreviousCalibrationByteIdentical) {
 TEST_F(FriendCalibration, ConcurrentTriggerIsRejectedAndCancelKeepsTheFile) {
   if (readFile(file_).empty()) ASSERT_TRUE(call(1).success);
   const std::string before = readFile(file_);
-  actionlib::SimpleActionClient<imagenets::CalibrateAction> client("/friend_calibration/calibrate_action", true);
-  ASSERT_TRUE(client.waitForServer(ros::Duration(10)));
-  std::mutex m;
-  int feedback_sample = 0, feedback_of = 0;
+  int feedback_sample = 0, feedback_of = 0;  // written by the feedback callback, in clients.waitUntil
+  imagenets::CallingThreadQueue clients;     // called back only in its waitUntil (it says why)
+  actionlib::SimpleActionClient<imagenets::CalibrateAction> client(clients.nodeHandle(),
+                                                                   "/friend_calibration/calibrate_action", false);
+  ASSERT_TRUE(clients.waitUntil([&client] { return client.isServerConnected(); }, 10));
   imagenets::CalibrateGoal goal;
   goal.redundancy = 9;
   client.sendGoal(goal, {}, {}, [&](const imagenets::CalibrateFeedbackConstPtr& f) {
-    std::lock_guard<std::mutex> lock(m);
     feedback_sample = f->sample;
     feedback_of = f->samples;
   });
   // Wait until the action reports that it is sampling.
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20);
-  while (ros::WallTime::now() < end) {
-    std::lock_guard<std::mutex> lock(m);
-    if (feedback_sample >= 1) break;
-    ros::WallDuration(0.01).sleep();
-  }
-  {
-    std::lock_guard<std::mutex> lock(m);
-    EXPECT_GE(feedback_sample, 1);
-    EXPECT_EQ(feedback_of, 18);
-  }
+  clients.waitUntil([&] { return feedback_sample >= 1; }, 20);
+  EXPECT_GE(feedback_sample, 1);
+  EXPECT_EQ(feedback_of, 18);
   const auto res = call(1);
   EXPECT_FALSE(res.success);
   EXPECT_NE(res.message.find("already running"), std::string::npos) << res.message;
   client.cancelGoal();
-  ASSERT_TRUE(client.waitForResult(ros::Duration(30)));
+  ASSERT_TRUE(clients.waitUntil([&client] { return client.getState().isDone(); }, 30));
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED) << client.getState().getText();
   EXPECT_NE(client.getResult()->message.find("cancelled"), std::string::npos) << client.getResult()->message;
   EXPECT_EQ(readFile(file_), before);

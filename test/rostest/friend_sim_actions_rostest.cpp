@@ -1,5 +1,6 @@
 // rostest: the simulated arm and head behave like real actionlib drivers.
 #include <cmath>
+#include <functional>
 #include <mutex>
 
 #include <actionlib/client/simple_action_client.h>
@@ -8,6 +9,7 @@
 #include <sensor_msgs/JointState.h>
 
 #include "imagenets/MoveJointsAction.h"
+#include "imagenets/calling_thread_queue.h"
 
 namespace {
 
@@ -40,9 +42,11 @@ class JointStates {
     last_ = m;
   }
   ros::NodeHandle nh_;
-  ros::Subscriber sub_;
   std::mutex m_;
   sensor_msgs::JointState last_;
+  // Last, so it is destroyed first: unsubscribing waits for a running cb(), which must still find
+  // m_ and last_ alive (joint_states come at 50 Hz, so one is often running when a test ends).
+  ros::Subscriber sub_;
 };
 
 imagenets::MoveJointsGoal goal(std::vector<double> deg, double speed = 1.0) {
@@ -54,22 +58,35 @@ imagenets::MoveJointsGoal goal(std::vector<double> deg, double speed = 1.0) {
 
 std::string armJoint(int i) { return "arm_joint_" + std::to_string(i); }
 
+// The action clients' callbacks run on the test's own thread, inside waitUntil(), never on the
+// spinner's (imagenets/calling_thread_queue.h says why).
 class FriendSimActions : public ::testing::Test {
  protected:
   void SetUp() override {
-    ASSERT_TRUE(arm_.waitForServer(ros::Duration(15))) << "arm/move_joints server missing";
-    ASSERT_TRUE(head_.waitForServer(ros::Duration(15))) << "head/move_joints server missing";
+    ASSERT_TRUE(waitUntil([this] { return arm_.isServerConnected(); }, 15)) << "arm/move_joints server missing";
+    ASSERT_TRUE(waitUntil([this] { return head_.isServerConnected(); }, 15)) << "head/move_joints server missing";
     ros::NodeHandle("friend_sim").setParam("faults/arm_abort_probability", 0.0);
   }
-  Client arm_{"arm/move_joints", false};
-  Client head_{"head/move_joints", false};
+  bool waitUntil(const std::function<bool()>& done, double seconds) { return clients_.waitUntil(done, seconds); }
+  bool waitForResult(Client& client, double seconds) {
+    return waitUntil([&client] { return client.getState().isDone(); }, seconds);
+  }
+  // Lets time pass while the clients' callbacks are handled.
+  void pause(double seconds) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
+    waitUntil([&end] { return ros::WallTime::now() >= end; }, seconds + 1);
+  }
+
+  imagenets::CallingThreadQueue clients_;
+  Client arm_{clients_.nodeHandle(), "arm/move_joints", false};
+  Client head_{clients_.nodeHandle(), "head/move_joints", false};
   JointStates states_;
 };
 
 TEST_F(FriendSimActions, ArmGoalIsReachedAndReportedByJointStates) {
   const std::vector<double> target{-30, 50, 40, 70, -20, 60, 10};
   arm_.sendGoal(goal(target));
-  ASSERT_TRUE(arm_.waitForResult(ros::Duration(20)));
+  ASSERT_TRUE(waitForResult(arm_, 20));
   EXPECT_EQ(arm_.getState(), actionlib::SimpleClientGoalState::SUCCEEDED) << arm_.getState().getText();
   const auto result = arm_.getResult();
   ASSERT_EQ(result->positions.size(), 7u);
@@ -80,7 +97,7 @@ TEST_F(FriendSimActions, ArmGoalIsReachedAndReportedByJointStates) {
 
 TEST_F(FriendSimActions, HeadGoalIsReached) {
   head_.sendGoal(goal({-15, 40}));
-  ASSERT_TRUE(head_.waitForResult(ros::Duration(20)));
+  ASSERT_TRUE(waitForResult(head_, 20));
   EXPECT_EQ(head_.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
   states_.waitFresh();
   EXPECT_NEAR(states_.position("head_pan_joint"), -15 * kDeg, 1e-9);
@@ -89,7 +106,7 @@ TEST_F(FriendSimActions, HeadGoalIsReached) {
 
 TEST_F(FriendSimActions, OutOfLimitGoalIsRejectedWithAReason) {
   arm_.sendGoal(goal({0, 0, 0, 150, 0, 0, 0}));  // joint 4 is limited to +-115 deg
-  ASSERT_TRUE(arm_.waitForResult(ros::Duration(10)));
+  ASSERT_TRUE(waitForResult(arm_, 10));
   EXPECT_EQ(arm_.getState(), actionlib::SimpleClientGoalState::REJECTED);
   const std::string why = arm_.getState().getText();
   EXPECT_NE(why.find("arm_joint_4"), std::string::npos) << why;
@@ -99,65 +116,50 @@ TEST_F(FriendSimActions, OutOfLimitGoalIsRejectedWithAReason) {
   named.joint_names = {"head_pan_joint", "no_such_joint"};
   named.positions = {0, 0};
   head_.sendGoal(named);
-  ASSERT_TRUE(head_.waitForResult(ros::Duration(10)));
+  ASSERT_TRUE(waitForResult(head_, 10));
   EXPECT_EQ(head_.getState(), actionlib::SimpleClientGoalState::REJECTED);
   EXPECT_NE(head_.getState().getText().find("no_such_joint"), std::string::npos) << head_.getState().getText();
 }
 
 TEST_F(FriendSimActions, NewGoalPreemptsAndCancelStops) {
   arm_.sendGoal(goal({0, 0, 0, 0, 0, 0, 0}));
-  ASSERT_TRUE(arm_.waitForResult(ros::Duration(20)));
+  ASSERT_TRUE(waitForResult(arm_, 20));
   // A slow, long move; preempt it part way with another client's goal.
-  Client other("arm/move_joints", true);
-  ASSERT_TRUE(other.waitForServer(ros::Duration(5)));
+  Client other(clients_.nodeHandle(), "arm/move_joints", false);
+  ASSERT_TRUE(waitUntil([&other] { return other.isServerConnected(); }, 15));
   arm_.sendGoal(goal({90, 0, 0, 0, 0, 0, 0}, 0.2));
-  ros::Duration(0.5).sleep();
+  pause(0.5);
   const double part = states_.position(armJoint(1));
   EXPECT_GT(part, 0.001);
   EXPECT_LT(part, 89 * kDeg);
   other.sendGoal(goal({10, 0, 0, 0, 0, 0, 0}));
-  ASSERT_TRUE(arm_.waitForResult(ros::Duration(5)));
+  ASSERT_TRUE(waitForResult(arm_, 5));
   EXPECT_EQ(arm_.getState(), actionlib::SimpleClientGoalState::PREEMPTED);
-  ASSERT_TRUE(other.waitForResult(ros::Duration(20)));
+  ASSERT_TRUE(waitForResult(other, 20));
   EXPECT_EQ(other.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
   states_.waitFresh();
   EXPECT_NEAR(states_.position(armJoint(1)), 10 * kDeg, 1e-9);
 
   // Cancel: the arm stops where it is and stays there.
   arm_.sendGoal(goal({-90, 0, 0, 0, 0, 0, 0}, 0.2));
-  ros::Duration(0.5).sleep();
+  pause(0.5);
   arm_.cancelGoal();
-  ASSERT_TRUE(arm_.waitForResult(ros::Duration(5)));
+  ASSERT_TRUE(waitForResult(arm_, 5));
   EXPECT_EQ(arm_.getState(), actionlib::SimpleClientGoalState::PREEMPTED);
   const double stopped = arm_.getResult()->positions[0];
   EXPECT_LT(stopped, 10 * kDeg - 1e-3);
   EXPECT_GT(stopped, -89 * kDeg);
-  ros::Duration(0.3).sleep();  // it must not drift on
+  pause(0.3);  // it must not drift on
   states_.waitFresh();
   EXPECT_NEAR(states_.position(armJoint(1)), stopped, 1e-9);
 }
 
 TEST_F(FriendSimActions, FeedbackReportsProgress) {
-  // Feedback arrives on the spinner's threads (two of them): collected under a lock, and owned
-  // by the callback so that a late one after this test ends touches nothing freed.
-  struct Progress {
-    std::mutex mutex;
-    std::vector<double> values;
-  };
-  auto received = std::make_shared<Progress>();
+  std::vector<double> progress;  // filled on this thread, inside waitForResult()
   arm_.sendGoal(goal({20, 20, 0, 30, 0, 0, 0}, 0.2), Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
-                [received](const imagenets::MoveJointsFeedbackConstPtr& fb) {
-                  std::lock_guard<std::mutex> lock(received->mutex);
-                  received->values.push_back(fb->progress);
-                });
-  ASSERT_TRUE(arm_.waitForResult(ros::Duration(20)));
+                [&progress](const imagenets::MoveJointsFeedbackConstPtr& fb) { progress.push_back(fb->progress); });
+  ASSERT_TRUE(waitForResult(arm_, 20));
   EXPECT_EQ(arm_.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
-  arm_.stopTrackingGoal();
-  std::vector<double> progress;
-  {
-    std::lock_guard<std::mutex> lock(received->mutex);
-    progress = received->values;
-  }
   ASSERT_GT(progress.size(), 3u);
   for (size_t i = 1; i < progress.size(); ++i) EXPECT_GE(progress[i], progress[i - 1]);
   EXPECT_LE(progress.back(), 1.0);
@@ -165,11 +167,11 @@ TEST_F(FriendSimActions, FeedbackReportsProgress) {
 
 TEST_F(FriendSimActions, AbortFaultAbortsPartWay) {
   arm_.sendGoal(goal({0, 0, 0, 0, 0, 0, 0}));
-  ASSERT_TRUE(arm_.waitForResult(ros::Duration(20)));
+  ASSERT_TRUE(waitForResult(arm_, 20));
   ros::NodeHandle("friend_sim").setParam("faults/arm_abort_probability", 1.0);
-  ros::Duration(0.3).sleep();  // the simulator reads the parameter through the cache (updated by the master)
+  pause(0.3);  // the simulator reads the parameter through the cache (updated by the master)
   arm_.sendGoal(goal({60, 0, 0, 0, 0, 0, 0}));
-  ASSERT_TRUE(arm_.waitForResult(ros::Duration(20)));
+  ASSERT_TRUE(waitForResult(arm_, 20));
   EXPECT_EQ(arm_.getState(), actionlib::SimpleClientGoalState::ABORTED);
   EXPECT_NE(arm_.getState().getText().find("simulated fault"), std::string::npos) << arm_.getState().getText();
   const double reached = arm_.getResult()->positions[0];

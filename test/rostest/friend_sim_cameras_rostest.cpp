@@ -21,6 +21,7 @@
 #include "robot_description/robot_model.h"
 #include "imagenets/blocks/marker.h"
 #include "imagenets/MoveJointsAction.h"
+#include "imagenets/calling_thread_queue.h"
 #include "rostest_util.h"
 
 namespace {
@@ -39,15 +40,15 @@ class FriendSimCameras : public ::testing::Test {
   static void SetUpTestSuite() {
     // Calibration pose of the description: the marker faces the stereo camera.
     const auto d = robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath());
-    Client arm("arm/move_joints", false), head("head/move_joints", false);
-    ASSERT_TRUE(arm.waitForServer(ros::Duration(15)));
-    ASSERT_TRUE(head.waitForServer(ros::Duration(15)));
+    imagenets::CallingThreadQueue clients;  // called back only in its waitUntil (it says why)
+    Client arm(clients.nodeHandle(), "arm/move_joints", false), head(clients.nodeHandle(), "head/move_joints", false);
+    ASSERT_TRUE(clients.waitUntil([&] { return arm.isServerConnected() && head.isServerConnected(); }, 15));
     imagenets::MoveJointsGoal ga, gh;
     ga.positions = d.arm_calibration_pose;
     gh.positions = d.head_calibration_pose;
     arm.sendGoal(ga);
     head.sendGoal(gh);
-    ASSERT_TRUE(arm.waitForResult(ros::Duration(20)) && head.waitForResult(ros::Duration(20)));
+    ASSERT_TRUE(clients.waitUntil([&] { return arm.getState().isDone() && head.getState().isDone(); }, 40));
     ASSERT_EQ(arm.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
     ASSERT_EQ(head.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
   }

@@ -54,7 +54,9 @@ class LatestMessage {
     last_ = m;
   }
   ros::NodeHandle nh_;
-  ros::Subscriber sub_;
   std::mutex mutex_;
   boost::shared_ptr<const M> last_;
+  // Last, so it is destroyed first: unsubscribing waits for a running callback, which must still
+  // find mutex_ and last_ alive.
+  ros::Subscriber sub_;
 };

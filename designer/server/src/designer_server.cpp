@@ -10,6 +10,7 @@
 
 #include "beast.h"
 #include "http_connection.h"
+#include "net_state_json.h"
 #include "serial_worker.h"
 #include "web_socket_connection.h"
 
@@ -49,13 +50,13 @@ struct DesignerServer::Impl : DesignerSession::Output, WebSocketConnection::Hub 
     try {
       request = nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
-      send(id, nlohmann::json{{"op", "error"}, {"error", std::string("bad JSON: ") + e.what()}}.dump());
+      send(id, jsonText({{"op", "error"}, {"error", std::string("bad JSON: ") + e.what()}}));
       return;
     }
     // Cancel cannot wait behind the run it is meant to stop.
     if (request.is_object() && request.value("op", nlohmann::json()) == "cancel") {
       session.cancel();
-      send(id, nlohmann::json{{"op", "reply"}, {"id", request.value("id", nlohmann::json())}, {"ok", true}}.dump());
+      send(id, jsonText({{"op", "reply"}, {"id", request.value("id", nlohmann::json())}, {"ok", true}}));
       return;
     }
     worker.post([this, id, request = std::move(request)] { session.handle(id, request); });

@@ -25,8 +25,6 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
-
 const json& field(const json& request, const std::string& name) {
   auto it = request.find(name);
   if (it == request.end()) {
@@ -71,6 +69,16 @@ std::string propertyText(const json& v) {
     return out + "]";
   }
   throw RequestError("a property value is text, a number, a boolean or a list of numbers");
+}
+
+// The optional `properties: {name: text}` of a block in a request.
+std::vector<PropertySetting> propertySettings(const json& item, const SourceLocation& loc) {
+  std::vector<PropertySetting> out;
+  auto it = item.find("properties");
+  if (it == item.end() || it->is_null()) return out;
+  if (!it->is_object()) throw RequestError("'properties' must be {name: text}");
+  for (auto p = it->begin(); p != it->end(); ++p) out.push_back(PropertySetting{p.key(), propertyText(p.value()), loc});
+  return out;
 }
 
 // "ImageFileSource" -> "image_file_source"
@@ -151,6 +159,14 @@ DesignerSession::~DesignerSession() {
 bool DesignerSession::openStartupNet(const std::string& path) {
   const std::string absolute = fs::weakly_canonical(fs::absolute(path)).string();
   roots_.add(fs::path(absolute).parent_path().string());
+  if (!fs::exists(absolute)) {
+    // A new net, saved under that name.
+    file_ = absolute;
+    doc_ = NetDocument::empty(absolute, fs::path(absolute).parent_path().string());
+    rebuild(doc_);
+    saved_text_ = doc_.text();
+    return true;
+  }
   try {
     loadFile(absolute);
     return true;
@@ -183,7 +199,7 @@ void DesignerSession::rebuild(const NetDocument& doc) {
   auto executor = std::make_unique<Executor>(std::move(net), ExecutorOptions{options_.threads});
   // Run events go to every tab as they happen (observers run on pool threads: broadcast only queues).
   executor->addObserver([this](const RunEvent& e) {
-    out_.broadcast(dump(eventJson(e)));
+    out_.broadcast(jsonText(eventJson(e)));
     if (e.kind == RunEventKind::BlockCached) {
       std::lock_guard<std::mutex> lock(cached_mutex_);
       cached_.push_back(e.block);
@@ -265,14 +281,18 @@ bool DesignerSession::configurationChanged(const NetDocument& previous, const Ne
   return false;
 }
 
-void DesignerSession::apply(NetDocument next, const std::string& merge) {
+void DesignerSession::apply(NetDocument next, const std::string& merge, bool notify) {
   NetDocument previous = doc_;
   install(std::move(next));
   if (merge.empty() || undo_.empty() || undo_.back().merge != merge || !redo_.empty()) {
     undo_.push_back({std::move(previous), merge});
   }
   redo_.clear();
-  changed();
+  if (notify) {
+    changed();
+  } else {
+    ++revision_;  // the caller pushes the state
+  }
 }
 
 void DesignerSession::install(NetDocument next) {
@@ -307,7 +327,7 @@ void DesignerSession::install(NetDocument next) {
 
 void DesignerSession::changed() {
   ++revision_;
-  out_.broadcast(dump(netState()));
+  out_.broadcast(jsonText(netState()));
 }
 
 BlockSpec& DesignerSession::block(NetDocument& doc, const std::string& name) const {
@@ -421,11 +441,11 @@ void DesignerSession::handle(int client, const json& request) {
     reply["op"] = "reply";
     reply["id"] = id;
     reply["ok"] = true;
-    out_.send(client, dump(reply));
+    out_.send(client, jsonText(reply));
   } catch (const std::exception& e) {
     json reply = id.is_null() ? json{{"op", "error"}} : json{{"op", "reply"}, {"id", id}, {"ok", false}};
     reply["error"] = e.what();
-    out_.send(client, dump(reply));
+    out_.send(client, jsonText(reply));
   }
 }
 
@@ -459,12 +479,7 @@ json DesignerSession::opAddBlock(int, const json& request) {
                                                                    : uniqueName(doc_, nameFromType(b.type));
   b.loc = SourceLocation{doc_.spec.origin, 0};
   // A block that cannot be built with its defaults (a sub-net needs its net) comes with properties.
-  if (request.contains("properties") && !request["properties"].is_null()) {
-    if (!request["properties"].is_object()) throw RequestError("request 'add_block': 'properties' must be {name: text}");
-    for (auto it = request["properties"].begin(); it != request["properties"].end(); ++it) {
-      b.properties.push_back(PropertySetting{it.key(), propertyText(it.value()), b.loc});
-    }
-  }
+  b.properties = propertySettings(request, b.loc);
   if (request.contains("position") && !request["position"].is_null()) {
     next.positions[b.name] = positionOf(request["position"], "add_block");
   }
@@ -548,7 +563,8 @@ json DesignerSession::opSetProperty(int, const json& request) {
   } else {
     b.properties.push_back(PropertySetting{property, propertyText(value), SourceLocation{doc_.spec.origin, 0}});
   }
-  apply(std::move(next), "property " + name + "." + property);
+  // With auto_run the state goes out once, after the run, with the new stats.
+  apply(std::move(next), "property " + name + "." + property, !auto_run_);
   json reply = json::object();
   if (auto_run_) reply["run"] = runAndReport(0, "");
   return reply;
@@ -604,11 +620,7 @@ json DesignerSession::opPaste(int, const json& request) {
     b.name = names[stringField(item, "name")];
     b.type = stringField(item, "type");
     b.loc = SourceLocation{doc_.spec.origin, 0};
-    if (item.contains("properties") && item["properties"].is_object()) {
-      for (auto it = item["properties"].begin(); it != item["properties"].end(); ++it) {
-        b.properties.push_back(PropertySetting{it.key(), propertyText(it.value()), b.loc});
-      }
-    }
+    b.properties = propertySettings(item, b.loc);
     if (item.contains("position") && !item["position"].is_null()) {
       next.positions[b.name] = positionOf(item["position"], "block '" + b.name + "'");
     }
@@ -692,8 +704,9 @@ json DesignerSession::runAndReport(int kind, const std::string& block) {
   }
   RunReport report = kind == 0 ? executor_->run() : kind == 1 ? executor_->runAll() : executor_->runBlock(block);
   ++run_count_;
-  out_.broadcast(dump(netState()));  // stats
+  // The new values first: a page shows a preview before it digests the new state.
   sendPortData();
+  out_.broadcast(jsonText(netState()));  // stats
   json reply = runReport(report);
   std::lock_guard<std::mutex> lock(cached_mutex_);
   reply["cached"] = cached_;
@@ -747,7 +760,7 @@ json DesignerSession::opSave(int, const json& request) {
   errors_.clear();
   changed();
   // Open file dialogs in other tabs list the folder again.
-  out_.broadcast(dump({{"op", "files"}, {"dir", fs::path(target).parent_path().string()}, {"file", target}}));
+  out_.broadcast(jsonText({{"op", "files"}, {"dir", fs::path(target).parent_path().string()}, {"file", target}}));
   return {{"file", target}};
 }
 

@@ -50,8 +50,9 @@ class DesignerSession {
   DesignerSession(Output& output, Options options);
   ~DesignerSession();
 
-  // Loads the net given on the command line. A net that does not load leaves an empty net with
-  // the errors in the net state (and returns false).
+  // Loads the net given on the command line (a file that does not exist yet: a new net saved
+  // under that name). A net that does not load leaves an empty net with the errors in the net
+  // state (and returns false).
   bool openStartupNet(const std::string& path);
 
   // One request (a JSON object with "op" and "id"); the reply goes to `client`.
@@ -110,7 +111,8 @@ class DesignerSession {
   void install(NetDocument next);
   // install() as one undo step, and the new state to every tab. Consecutive edits with the same
   // non-empty `merge` key (one property dragged along a slider) are one step.
-  void apply(NetDocument next, const std::string& merge = "");
+  // `notify` false: the caller pushes the state later (after an automatic run).
+  void apply(NetDocument next, const std::string& merge = "", bool notify = true);
   void rebuild(const NetDocument& doc);
   // Whether a property change from `previous` to `next` changes a block's configuration (its
   // sub-net, its ports): then the net is built anew instead of setting the property.

@@ -12,6 +12,10 @@
 namespace imagenets {
 namespace designer {
 
+std::string jsonText(const nlohmann::json& message) {
+  return message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 nlohmann::json propertyValueJson(const PropertyValue& value) {
   struct Visitor {
     nlohmann::json operator()(bool b) const { return b; }

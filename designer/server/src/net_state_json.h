@@ -13,6 +13,10 @@
 namespace imagenets {
 namespace designer {
 
+// A message as sent: JSON text, with invalid UTF-8 (from a file name, a block's error text)
+// replaced instead of throwing.
+std::string jsonText(const nlohmann::json& message);
+
 nlohmann::json registryJson();
 nlohmann::json portJson(const PortSpec& port);
 nlohmann::json statsJson(const BlockStats& stats);

@@ -19,13 +19,15 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "net_state_json.h"
+
 namespace imagenets {
 namespace designer {
 
 namespace {
 
 std::string frame(const nlohmann::json& header, const std::string& payload) {
-  const std::string h = header.dump();
+  const std::string h = jsonText(header);
   std::string out(4, '\0');
   const uint32_t n = static_cast<uint32_t>(h.size());
   for (int i = 0; i < 4; ++i) out[i] = static_cast<char>((n >> (8 * i)) & 0xff);
@@ -268,7 +270,7 @@ std::string encodePortFrame(const Value& value, const std::string& mode, nlohman
     return frame(header, payload);
   }
   header["format"] = "json";
-  return frame(header, messageToJson(value).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+  return frame(header, jsonText(messageToJson(value)));
 }
 
 bool decodePortFrame(const std::string& data, nlohmann::json& header, std::string& payload) {

@@ -1,6 +1,6 @@
 #include "web_socket_connection.h"
 
-#include <nlohmann/json.hpp>
+#include "net_state_json.h"
 
 namespace imagenets {
 namespace designer {
@@ -49,7 +49,7 @@ void WebSocketConnection::onRead(beast::error_code ec, size_t bytes) {
 }
 
 void WebSocketConnection::error(const std::string& message) {
-  sendText(std::make_shared<const std::string>(nlohmann::json{{"op", "error"}, {"error", message}}.dump()));
+  sendText(std::make_shared<const std::string>(jsonText({{"op", "error"}, {"error", message}})));
 }
 
 void WebSocketConnection::sendText(std::shared_ptr<const std::string> text) {

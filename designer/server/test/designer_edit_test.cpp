@@ -382,3 +382,27 @@ TEST_F(DesignerTest, ATabThatFallsBehindGetsTheNewestValueNotEveryOne) {
   }
   EXPECT_LT(frames, changes);
 }
+
+TEST_F(DesignerTest, PasteMakesNamesUniqueAndKeepsItsLinksAndFeedback) {
+  start();
+  DesignerClient& c = connect();
+  addBlock(c, "imagenets/Grayscale", "gray");
+  const json pasted = c.request(
+      {{"op", "paste"},
+       {"blocks",
+        {{{"name", "gray"}, {"type", "imagenets/Grayscale"}, {"position", {5, 5}}},
+         {{"name", "threshold"}, {"type", "imagenets/Threshold"}, {"properties", {{"threshold", "99"}}}}}},
+       {"links", {{{"from", "gray.image"}, {"to", "threshold.image"}}}}});
+  expectOk(pasted);
+  EXPECT_EQ(pasted["names"]["gray"], "gray_2");
+  EXPECT_EQ(pasted["names"]["threshold"], "threshold");
+  const json net = netState(c);
+  EXPECT_EQ(net["blocks"].size(), 3u);
+  ASSERT_EQ(net["links"].size(), 1u);
+  EXPECT_EQ(net["links"][0]["from"], "gray_2.image");
+  EXPECT_EQ(blockOf(net, "threshold")["properties"]["threshold"], "99");
+  EXPECT_EQ(blockOf(net, "gray_2")["position"], json({5, 5}));
+  // One undo step takes the whole paste away.
+  expectOk(c.request({{"op", "undo"}}));
+  EXPECT_EQ(netState(c)["blocks"].size(), 1u);
+}

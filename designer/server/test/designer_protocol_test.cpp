@@ -48,6 +48,8 @@ TEST_F(DesignerTest, BadJsonIsNamedAndTheServerKeepsServing) {
   DesignerClient& c = connect();
   c.sendText("{\"op\": \"hello\", ");
   expectContains(nextError(c)["error"], "bad JSON");
+  c.sendText("{\"op\": \"h\xc3\xa9\xc3\xa9");  // cut after a two-byte character
+  expectContains(nextError(c)["error"], "bad JSON");
   expectStillServing(c);
 }
 

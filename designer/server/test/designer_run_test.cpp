@@ -133,3 +133,26 @@ TEST_F(DesignerTest, ToolServesTheNetGivenOnItsCommandLine) {
   EXPECT_TRUE(WIFEXITED(exit_status));
   EXPECT_EQ(WEXITSTATUS(exit_status), 0);
 }
+
+TEST_F(DesignerTest, ANetFileThatDoesNotExistYetIsANewNetSavedUnderThatName) {
+  const std::string file = root() + "/new_net.yaml";
+  start(file);
+  DesignerClient& c = connect();
+  EXPECT_EQ(c.request({{"op", "hello"}})["net"]["file"], file);
+  expectOk(c.request({{"op", "add_block"}, {"type", "imagenets/Grayscale"}, {"name", "gray"}}));
+  expectOk(c.request({{"op", "save"}}));
+  expectContains(readFile(file), "gray:");
+}
+
+TEST_F(DesignerTest, ANetThatDoesNotLoadLeavesAnEmptyNetAndItsErrors) {
+  const std::string file = root() + "/broken.yaml";
+  std::ofstream(file) << "blocks:\n  a: {type: imagenets/Nothing}\n";
+  DesignerServer::Options options;
+  options.port = 0;
+  DesignerServer server(options);
+  EXPECT_FALSE(server.session().openStartupNet(file));
+  const json net = server.session().netState();
+  EXPECT_TRUE(net["blocks"].empty());
+  ASSERT_EQ(net["errors"].size(), 1u);
+  expectContains(net["errors"][0], file + ":2: block 'a': unknown block type 'imagenets/Nothing'");
+}

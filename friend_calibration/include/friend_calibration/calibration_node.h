@@ -16,8 +16,8 @@
 //   ~detections/{left,right}/image   bgr8, the detected marker points drawn, per sample as it is
 //                       measured (latched), with ~detections/{left,right}/camera_info beside it
 // Parameters (private): description, marker, calibration_file, redundancy (5), method (joint),
-//   arm_action, head_action, joint_states, stereo_namespace, camera_timeout (s), motion_timeout
-//   (s), speed_scale, settle_time (s), reapproach (bool), poses_per_loop (joint method, 2), fusion/max_position_difference (m),
+//   arm_action, head_action, server_timeout (s, 10: the action servers at each calibration's start),
+//   joint_states, stereo_namespace, camera_timeout (s), motion_timeout (s), speed_scale, settle_time (s), reapproach (bool), poses_per_loop (joint method, 2), fusion/max_position_difference (m),
 //   fusion/max_angle_difference (rad), min_valid_fraction, replay (file re-solved at start-up),
 //   trigger_service (std_srvs/Trigger called after each motion; default stereo/trigger).
 #pragma once
@@ -44,6 +44,7 @@
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"
 #include "imagenets/MoveJointsAction.h"
+#include "imagenets/calling_thread_queue.h"
 
 namespace friend_calibration {
 
@@ -61,6 +62,14 @@ class CalibrationNode {
 
  private:
   using MoveClient = actionlib::SimpleActionClient<imagenets::MoveJointsAction>;
+  // The arm and head clients of one calibration, called back only in its thread's waits
+  // (imagenets/calling_thread_queue.h says why they are not kept for the node's life).
+  struct Motion {
+    Motion(const ros::NodeHandle& nh, const std::string& arm_action, const std::string& head_action)
+        : queue(nh), arm(queue.nodeHandle(), arm_action, false), head(queue.nodeHandle(), head_action, false) {}
+    imagenets::CallingThreadQueue queue;
+    MoveClient arm, head;
+  };
   struct StereoPair {
     sensor_msgs::ImageConstPtr left, right;
     sensor_msgs::CameraInfoConstPtr left_info, right_info;
@@ -74,7 +83,7 @@ class CalibrationNode {
 
   // Samples on the robot; throws std::runtime_error with the failure's description.
   std::vector<Sample> collectSamples(int n, const std::string& method, const Hooks& hooks);
-  void moveBoth(const CalibrationPose& pose, int sample, const Hooks& hooks);
+  void moveBoth(Motion& motion, const CalibrationPose& pose, int sample, const Hooks& hooks);
   StereoPair waitForStereoPair(const ros::Time& after, const Hooks& hooks);
   sensor_msgs::JointStateConstPtr waitForJointStates(const ros::Time& after);
   Sample measure(const StereoPair& pair, const sensor_msgs::JointState& joints) const;
@@ -89,7 +98,7 @@ class CalibrationNode {
   std::string calibration_file_, child_frame_ = "pth_fixed_point";
   int default_redundancy_ = 5;
   std::string default_method_ = "joint";
-  double camera_timeout_ = 3.0, motion_timeout_ = 60.0, speed_scale_ = 1.0, settle_time_ = 0.0;
+  double server_timeout_ = 10.0, camera_timeout_ = 3.0, motion_timeout_ = 60.0, speed_scale_ = 1.0, settle_time_ = 0.0;
   bool reapproach_ = true;
   int poses_per_loop_ = 2;
   double min_valid_fraction_ = 0.5;
@@ -97,7 +106,7 @@ class CalibrationNode {
   CombineOptions combine_;
   RobustDetectionOptions detection_;
 
-  std::unique_ptr<MoveClient> arm_, head_;
+  std::string arm_action_, head_action_;
   ros::Subscriber joint_sub_, image_sub_[2], info_sub_[2];
   ros::ServiceServer service_;
   ros::ServiceClient trigger_;
