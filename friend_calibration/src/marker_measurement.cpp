@@ -1,6 +1,7 @@
 #include "friend_calibration/marker_measurement.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
@@ -13,17 +14,9 @@ namespace {
 struct Trial {
   imagenets::marker::Detection detection;
   int threshold = 0;
+  bool valid = false;  // found, and the corners fit within the limit
+  double score = 0.0;
 };
-
-// Better: found, then higher confidence, then (nearly equal confidence) lower reprojection error:
-// a threshold at which a reflection disturbs the border fits its corners worse.
-bool better(const Trial& a, const Trial& b) {
-  if (a.detection.found != b.detection.found) return a.detection.found;
-  if (std::abs(a.detection.confidence - b.detection.confidence) > 0.05) {
-    return a.detection.confidence > b.detection.confidence;
-  }
-  return a.detection.reprojection_error < b.detection.reprojection_error;
-}
 
 }  // namespace
 
@@ -41,21 +34,10 @@ MarkerObservation detectMarkerRobustly(const cv::Mat& gray, const sensor_msgs::C
   }
   // Region of interest around the predicted marker (the prediction is off by the calibration
   // error, a few centimetres: the margin covers it). K's principal point moves with the crop.
-  cv::Rect roi(0, 0, gray.cols, gray.rows);
-  if (predicted && options.roi_margin_px > 0 && predicted->translation().z() > 0.05) {
-    const cv::Point2d c = camera.project(predicted->translation());
-    const double side = camera.K(0, 0) * marker.size / predicted->translation().z();
-    const int half = static_cast<int>(options.roi_margin_px + side);
-    roi = cv::Rect(static_cast<int>(c.x) - half, static_cast<int>(c.y) - half, 2 * half, 2 * half) &
-          cv::Rect(0, 0, gray.cols, gray.rows);
-    if (roi.width < 16 || roi.height < 16) roi = cv::Rect(0, 0, gray.cols, gray.rows);
-  }
+  const cv::Rect roi = predicted ? camera.regionAround(predicted->translation(), marker.size, options.roi_margin_px)
+                                 : cv::Rect(0, 0, gray.cols, gray.rows);
   const cv::Mat view = gray(roi);
-  imagenets::render::CameraModel cropped = camera;
-  cropped.width = roi.width;
-  cropped.height = roi.height;
-  cropped.K(0, 2) -= roi.x;
-  cropped.K(1, 2) -= roi.y;
+  const imagenets::render::CameraModel cropped = camera.cropped(roi);
   mk::DetectorOptions detector;
   detector.min_confidence = options.min_confidence;
   Eigen::Isometry3d hint;
@@ -63,59 +45,49 @@ MarkerObservation detectMarkerRobustly(const cv::Mat& gray, const sensor_msgs::C
     hint = *predicted;
     detector.pose_hint = &hint;
   }
-  // The sweep compares thresholds without the sub-pixel corner refinement (it hardly changes the
-  // pattern confidence); the chosen threshold is then detected once more with it.
-  mk::DetectorOptions sweep = detector;
-  sweep.refine_passes = 0;
-  auto detectIn = [&](const cv::Mat& binary, int t, const mk::DetectorOptions& o) {
-    Trial trial;
-    trial.threshold = t;
-    trial.detection = mk::detect(view, binary, cropped, marker, o);
-    return trial;
-  };
-  auto tryThreshold = [&](int t, const mk::DetectorOptions& o) {
+  // Each threshold once, in the order given; the best is the highest valid score (on a tie the one
+  // tried first); `done` once one reaches good_score.
+  std::vector<int> tried;
+  Trial best;
+  bool done = false;
+  auto tryThreshold = [&](int t) {
+    if (done || std::find(tried.begin(), tried.end(), t) != tried.end()) return;
+    tried.push_back(t);
     cv::Mat binary;
     cv::threshold(view, binary, t, 255, cv::THRESH_BINARY);
-    return detectIn(binary, t, o);
+    Trial trial;
+    trial.threshold = t;
+    trial.detection = mk::detect(view, binary, cropped, marker, detector);
+    trial.valid = trial.detection.found && trial.detection.reprojection_error <= options.max_reprojection_px;
+    if (!trial.valid) return;
+    const double penalty = trial.detection.reprojection_error * options.reprojection_penalty;
+    trial.score = trial.detection.confidence - penalty;
+    if (!best.valid || trial.score > best.score) best = trial;
+    done = options.good_score > 0 && trial.score >= options.good_score;
   };
   // The informed first guess: Otsu's threshold of the region (marker black and white against
-  // the background). Under even light it is as good as any other, and the sweep is skipped.
+  // the background). Under even light it is good at once, and the sweep is skipped.
   cv::Mat otsu_binary;
-  const int otsu = static_cast<int>(cv::threshold(view, otsu_binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU));
-  Trial best = detectIn(otsu_binary, otsu, sweep);
-  bool done = false;
-  if (options.good_confidence > 0 && best.detection.found && best.detection.confidence >= options.good_confidence) {
-    Trial refined = detectIn(otsu_binary, otsu, detector);
-    if (refined.detection.found && refined.detection.reprojection_error <= options.good_reprojection_px) {
-      best = refined;
-      done = true;
+  tryThreshold(static_cast<int>(cv::threshold(view, otsu_binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU)));
+  for (int t = options.coarse_from; t <= options.coarse_to; t += options.coarse_step) tryThreshold(t);
+  if (best.valid && options.fine_step > 0) {
+    const int centre = best.threshold;
+    for (int k = -options.fine_radius / options.fine_step; k <= options.fine_radius / options.fine_step; ++k) {
+      const int t = centre + k * options.fine_step;
+      if (k != 0 && t >= options.coarse_from && t <= options.coarse_to) tryThreshold(t);
     }
-  }
-  if (!done) {
-    for (int t = options.coarse_from; t <= options.coarse_to; t += options.coarse_step) {
-      Trial trial = tryThreshold(t, sweep);
-      if (better(trial, best)) best = trial;
-    }
-    if (best.detection.found && options.fine_step > 0) {
-      const int centre = best.threshold;
-      for (int t = centre - options.fine_radius; t <= centre + options.fine_radius; t += options.fine_step) {
-        if (t == centre || t < 1 || t > 254) continue;
-        Trial trial = tryThreshold(t, sweep);
-        if (better(trial, best)) best = trial;
-      }
-    }
-    if (best.detection.found && detector.refine_passes > 0) best = tryThreshold(best.threshold, detector);
   }
   MarkerObservation obs;
-  obs.found = best.detection.found;
-  obs.confidence = best.detection.confidence;
-  obs.threshold = best.threshold;
-  if (!obs.found) {
+  if (!best.valid) {
     obs.reason = "marker '" + marker.name + "' not found in the " + std::to_string(roi.width) + "x" +
                  std::to_string(roi.height) + " region at any threshold " + std::to_string(options.coarse_from) + ".." +
-                 std::to_string(options.coarse_to) + " (best confidence " + std::to_string(best.detection.confidence) + ")";
+                 std::to_string(options.coarse_to) + " with corners fitting within " +
+                 std::to_string(options.max_reprojection_px) + " px";
     return obs;
   }
+  obs.found = true;
+  obs.confidence = best.detection.confidence;
+  obs.threshold = best.threshold;
   obs.pose = best.detection.pose;
   obs.reprojection_error = best.detection.reprojection_error;
   for (const auto& p : best.detection.points) obs.points.emplace_back(p.x + roi.x, p.y + roi.y);

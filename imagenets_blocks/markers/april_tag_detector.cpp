@@ -30,7 +30,8 @@ class AprilTagDetectorBlock : public Block {
   void process(Context& ctx) override {
     std_msgs::Header header;
     const cv::Mat gray = inputImage(ctx, "gray", {"mono8"}, nullptr, &header);
-    const render::CameraModel camera = marker::inputCameraModel(ctx, gray);
+    cv::Point2d offset;
+    const render::CameraModel camera = marker::inputCameraModel(ctx, gray, &offset);
     marker::AprilTagOptions options;
     options.family = ctx.property<std::string>("family");
     options.id = ctx.property<int>("id");
@@ -38,7 +39,8 @@ class AprilTagDetectorBlock : public Block {
     options.quad_decimate = ctx.property<double>("quad_decimate");
     // libapriltag keeps state: a detector per call (cheap next to detection), never shared.
     const marker::AprilTagDetector detector(options);
-    const marker::Detection d = detector.detect(gray, camera);
+    marker::Detection d = detector.detect(gray, camera);
+    marker::shiftPoints(d, offset);
     auto msg = marker::toMsg(d, options.family + ":" + std::to_string(options.id), header);
     if (d.found) msg->points.resize(4);
     ctx.output("detection", msg);

@@ -55,6 +55,9 @@ MarkerDetectionNet::MarkerDetectionNet(const std::string& net_path, const std::s
     if (!threshold.feedback) throw std::runtime_error(net_path + ": block 'threshold' has no feedback");
     threshold.feedback->values.clear();
     for (double v = mode.from; v <= mode.to + 1e-9; v += mode.step) threshold.feedback->values.push_back(v);
+    threshold.feedback->from = mode.from;
+    threshold.feedback->to = mode.to;
+    threshold.feedback->step = mode.step;
     threshold.feedback->search = mode.search;
     threshold.feedback->parallel = mode.parallel;
   } else {

@@ -43,6 +43,25 @@ cv::Point2d CameraModel::project(const Eigen::Vector3d& p) const {
   return img[0];
 }
 
+CameraModel CameraModel::cropped(const cv::Rect& region) const {
+  CameraModel c = *this;
+  c.width = region.width;
+  c.height = region.height;
+  c.K(0, 2) -= region.x;
+  c.K(1, 2) -= region.y;
+  return c;
+}
+
+cv::Rect CameraModel::regionAround(const Eigen::Vector3d& p, double size, int margin_px) const {
+  const cv::Rect image(0, 0, width, height);
+  if (margin_px <= 0 || !(p.z() > 0.05)) return image;
+  const cv::Point2d c = project(p);
+  const int half = static_cast<int>(margin_px + K(0, 0) * size / p.z());
+  const cv::Rect region =
+      cv::Rect(static_cast<int>(c.x) - half, static_cast<int>(c.y) - half, 2 * half, 2 * half) & image;
+  return region.width < 16 || region.height < 16 ? image : region;
+}
+
 namespace {
 
 // Undistorted normalised coordinates of the pixel centres (u, v) for u = -1..width,

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cv_bridge/cv_bridge.h>
+#include <geometry_msgs/PoseStamped.h>
 #include <imagenets/FeedbackTrace.h>
 #include <imagenets/MarkerDetection.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sensor_msgs/CameraInfo.h>
 #include <std_msgs/Float64.h>
 
@@ -125,4 +127,79 @@ TEST(SquareMarkerDetectorBlock, BadInputsGiveNamedErrors) {
     EXPECT_FALSE(exec->output<imagenets::MarkerDetection>("detector.detection")->found);
     EXPECT_FALSE(exec->output<std_msgs::Float64>("detector.confidence"));
   }
+}
+
+namespace {
+struct Detected {
+  imagenets::MarkerDetectionConstPtr detection;
+  double reprojection_error = -1;
+};
+
+Detected detectIn(const cv::Mat& gray, const sensor_msgs::CameraInfoPtr& info, int refine_passes,
+                  const geometry_msgs::PoseStamped* hint = nullptr) {
+  auto exec = detectorOnly();
+  exec->setProperty("detector", "refine_passes", refine_passes);
+  cv::Mat binary;
+  cv::threshold(gray, binary, 60, 255, cv::THRESH_BINARY);
+  exec->setInput("detector.image", image(binary, "mono8"));
+  exec->setInput("detector.gray", image(gray, "mono8"));
+  exec->setInput("detector.camera_info", sensor_msgs::CameraInfoConstPtr(info));
+  if (hint) exec->setInput("detector.pose_hint", boost::make_shared<const geometry_msgs::PoseStamped>(*hint));
+  const RunReport r = exec->run();
+  EXPECT_TRUE(r.ok()) << failures(r);
+  Detected d;
+  d.detection = exec->output<imagenets::MarkerDetection>("detector.detection");
+  if (auto e = exec->output<std_msgs::Float64>("detector.reprojection_error")) d.reprojection_error = e->data;
+  return d;
+}
+}  // namespace
+
+TEST(SquareMarkerDetectorBlock, RegionOfInterestRefinementPassesAndReprojectionError) {
+  const cv::Mat gray = cv::imread("config/images/marker_sample.png", cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(gray.empty());
+  const Detected full = detectIn(gray, friendInfo(), 2);
+  ASSERT_TRUE(full.detection && full.detection->found);
+  EXPECT_EQ(full.reprojection_error, full.detection->reprojection_error);
+
+  // The same marker in a region of the image (camera_info roi as ROS defines it): full-image points.
+  cv::Rect box = cv::boundingRect(std::vector<cv::Point2f>{
+      cv::Point2f(full.detection->points[0].x, full.detection->points[0].y),
+      cv::Point2f(full.detection->points[2].x, full.detection->points[2].y)});
+  box = cv::Rect(box.x - 60, box.y - 60, box.width + 120, box.height + 120) & cv::Rect(0, 0, gray.cols, gray.rows);
+  auto region = friendInfo();
+  region->roi.x_offset = box.x;
+  region->roi.y_offset = box.y;
+  region->roi.width = box.width;
+  region->roi.height = box.height;
+  const Detected cropped = detectIn(gray(box).clone(), region, 2);
+  ASSERT_TRUE(cropped.detection && cropped.detection->found);
+  for (size_t i = 0; i < 8; ++i) {
+    EXPECT_NEAR(cropped.detection->points[i].x, full.detection->points[i].x, 0.01) << i;
+    EXPECT_NEAR(cropped.detection->points[i].y, full.detection->points[i].y, 0.01) << i;
+  }
+  EXPECT_NEAR(cropped.detection->pose.position.z, full.detection->pose.position.z, 1e-5);
+
+  // Pixel corners only (no sub-pixel refinement): found, but the corners fit worse.
+  const Detected coarse = detectIn(gray, friendInfo(), 0);
+  ASSERT_TRUE(coarse.detection && coarse.detection->found);
+  EXPECT_GT(coarse.reprojection_error, full.reprojection_error);
+  EXPECT_NEAR(coarse.detection->points[0].x, full.detection->points[0].x, 2.0);
+
+  // A pose hint is accepted (it only decides between two equally fitting planar poses).
+  geometry_msgs::PoseStamped hint;
+  hint.pose = full.detection->pose;
+  const Detected hinted = detectIn(gray, friendInfo(), 2, &hint);
+  ASSERT_TRUE(hinted.detection && hinted.detection->found);
+  EXPECT_NEAR(hinted.detection->pose.position.x, full.detection->pose.position.x, 1e-9);
+
+  // A roi outside the image is named.
+  region->roi.x_offset = 1000;
+  auto exec = detectorOnly();
+  exec->setInput("detector.image", image(gray(box).clone(), "mono8"));
+  exec->setInput("detector.gray", image(gray(box).clone(), "mono8"));
+  exec->setInput("detector.camera_info", sensor_msgs::CameraInfoConstPtr(region));
+  const RunReport r = exec->run();
+  ASSERT_EQ(r.failed.size(), 1u);
+  EXPECT_NE(r.failed[0].find("input 'camera_info': roi"), std::string::npos) << r.failed[0];
+  EXPECT_NE(r.failed[0].find("is not inside the 1024x768 image"), std::string::npos) << r.failed[0];
 }

@@ -177,13 +177,19 @@ cv::Mat plotSeries(const std::vector<Series>& series, const Options& options, Ax
 }
 
 cv::Mat plotFeedbackTrace(const imagenets::FeedbackTrace& trace, int width, int height, Axes* axes) {
-  Series s;
-  s.x = trace.values;
-  s.y = trace.scores;
-  if (s.y.size() != s.x.size()) {
+  if (trace.scores.size() != trace.values.size()) {
     throw std::invalid_argument("feedback trace of " + trace.block + "." + trace.property + ": " +
                                 std::to_string(trace.values.size()) + " values but " +
                                 std::to_string(trace.scores.size()) + " scores");
+  }
+  // The trace lists the candidates in the order tried; the curve runs along the property.
+  std::vector<size_t> order(trace.values.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return trace.values[a] < trace.values[b]; });
+  Series s;
+  for (size_t i : order) {
+    s.x.push_back(trace.values[i]);
+    s.y.push_back(trace.scores[i]);
   }
   Options o;
   o.width = width;
@@ -204,6 +210,7 @@ cv::Mat plotFeedbackTrace(const imagenets::FeedbackTrace& trace, int width, int 
     std::snprintf(buf, sizeof buf, "%u of %u candidates evaluated", trace.trials, trace.candidates);
     o.note += (o.note.empty() ? "" : "; ") + std::string(buf);
   }
+  if (!trace.stop_reason.empty()) o.note += (o.note.empty() ? "stopped: " : "; stopped: ") + trace.stop_reason;
   return plotSeries({s}, o, axes);
 }
 

@@ -9,6 +9,7 @@
 #include <imagenets/FeedbackTrace.h>
 #include <std_msgs/Float64.h>
 
+#include "feedback_search.h"
 #include "imagenets/registry.h"
 #include "thread_pool.h"
 
@@ -350,9 +351,19 @@ void Executor::execute(const std::vector<int>& nodes, Store& store, RunReport& r
   for (int n : nodes) {
     const int u = unitOf(n);
     if (u == n) units.push_back(n);
+    std::vector<int> feeding;
     for (const Endpoint& link : net_->node(n).input_links) {
-      if (!link.valid() || !in_set[link.node]) continue;
-      const int pu = unitOf(link.node);
+      if (link.valid()) feeding.push_back(link.node);
+    }
+    // A feedback sweep also waits for the blocks its initial candidates come from.
+    if (!trial && net_->node(n).feedback) {
+      for (const FeedbackInitial& init : net_->node(n).feedback->initial) {
+        if (init.fromPort()) feeding.push_back(net_->findNode(init.block));
+      }
+    }
+    for (int p : feeding) {
+      if (!in_set[p]) continue;
+      const int pu = unitOf(p);
       if (pu != u && providers[u].insert(pu).second) dependents[pu].push_back(u);
     }
   }
@@ -404,7 +415,11 @@ double Executor::runTrial(int node, double candidate, const Store& base, Store& 
   const Net::Node& n = net_->node(node);
   const FeedbackSpec& f = *n.feedback;
   Overrides overrides;
-  overrides[node][f.property] = n.block->findProperty(f.property)->fromNumber(candidate);
+  try {
+    overrides[node][f.property] = n.block->findProperty(f.property)->fromNumber(candidate);
+  } catch (const PropertyError&) {
+    return std::numeric_limits<double>::quiet_NaN();  // e.g. an initial value out of the property's range
+  }
   // Only what the region reads: its providers' outputs, which are final while it runs (other
   // blocks may be writing their own entries of `base` concurrently).
   trial_store.assign(base.size(), {});
@@ -421,11 +436,23 @@ double Executor::runTrial(int node, double candidate, const Store& base, Store& 
   return value && std::isfinite(value->data) ? value->data : std::numeric_limits<double>::quiet_NaN();
 }
 
+std::vector<double> Executor::initialCandidates(int node, const Store& store) const {
+  std::vector<double> values;
+  for (const FeedbackInitial& init : net_->node(node).feedback->initial) {
+    if (!init.fromPort()) {
+      values.push_back(init.value);
+      continue;
+    }
+    // A providing block that failed adds no candidate; the search goes on without it.
+    const Endpoint from = net_->resolveOutput(init.block + "." + init.port);
+    if (auto v = store[from.node][from.port].as<std_msgs::Float64>()) values.push_back(v->data);
+  }
+  return values;
+}
+
 void Executor::runFeedback(int node, Store& store, RunReport& report) {
   const Net::Node& n = net_->node(node);
   const FeedbackSpec& f = *n.feedback;
-  const std::vector<double>& candidates = f.values;
-  const int count = static_cast<int>(candidates.size());
   const auto& region = feedback_region_[node];
   std::string missing;
   gatherInputs(node, store, missing);
@@ -439,111 +466,72 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
     return;
   }
 
-  // Every evaluated candidate's score; the best trial's outputs are the only ones kept.
-  std::mutex best_mutex;
-  std::map<int, double> scores;
-  int best = -1;
+  // The search (feedback_search.h) decides which candidates to try; here they only run. A batch
+  // runs in chunks, each chunk's trials in parallel, and the scores go back in batch order, so a
+  // sequential search (chunks of one) tries exactly the same candidates and keeps the same best.
+  const PropertySpec* property = n.block->findProperty(f.property);
+  FeedbackSearch search(f, initialCandidates(node, store), [property](double v) {
+    try {
+      return toNumber(property->fromNumber(v));
+    } catch (const PropertyError&) {
+      return v;  // out of range: its trial fails and counts as invalid
+    }
+  });
+  const size_t chunk_size = f.parallel ? static_cast<size_t>(2 * threads()) : 1;
   Store best_store;
-  auto better = [&](double s, int i, double best_score) {
-    if (std::isnan(s)) return false;
-    if (best < 0) return true;
-    if (s == best_score) return i < best;  // ties: the first candidate wins, as in a sequential sweep
-    return f.maximize ? s > best_score : s < best_score;
-  };
   for (int m : region) emitBlockEvent(RunEventKind::BlockStarted, m, statsOf(m));
-  auto evaluate = [&](int i) {
-    if (cancelled()) return;  // between trials: the sweep stops, the region stays out of date
-    Store trial_store;
-    double s = runTrial(node, candidates[i], store, trial_store);
-    if (cancelled()) return;  // the trial may have been cut short: its score does not count
-    RunEvent event;
-    event.kind = RunEventKind::FeedbackTrial;
-    event.block = n.name;
-    event.message = f.property;
-    event.value = candidates[i];
-    event.score = s;
-    event.count = count;
-    {
-      std::lock_guard<std::mutex> lock(best_mutex);
-      scores[i] = s;
-      event.index = static_cast<int>(scores.size());
-      if (better(s, i, best >= 0 ? scores[best] : 0.0)) {
-        best = i;
-        best_store = std::move(trial_store);
+  for (auto batch = search.nextBatch(); !batch.empty() && !cancelled(); batch = search.nextBatch()) {
+    for (size_t first = 0; first < batch.size() && !search.finished(); first += chunk_size) {
+      const size_t count = std::min(chunk_size, batch.size() - first);
+      std::vector<double> scores(count);
+      std::vector<Store> stores(count);
+      runParallel(count, [&](size_t k) {
+        if (!cancelled()) scores[k] = runTrial(node, batch[first + k], store, stores[k]);
+      });
+      for (size_t k = 0; k < count; ++k) {
+        // A trial cut short or skipped by a cancel does not count; the search stops.
+        if (cancelled()) {
+          search.cancel();
+          break;
+        }
+        const bool more = search.report(scores[k]);
+        const auto& trial = search.trials().back();
+        if (search.best() == static_cast<int>(search.trials().size()) - 1) best_store = std::move(stores[k]);
+        RunEvent event;
+        event.kind = RunEventKind::FeedbackTrial;
+        event.block = n.name;
+        event.message = f.property;
+        event.value = trial.value;
+        event.score = trial.score;
+        event.index = static_cast<int>(search.trials().size());
+        event.count = static_cast<int>(search.candidates());
+        emit(event);
+        if (!more) break;
       }
     }
-    emit(event);
-  };
-  auto evaluateAll = [&](std::vector<int> indices) {
-    indices.erase(std::remove_if(indices.begin(), indices.end(),
-                                 [&](int i) { return i < 0 || i >= count || scores.count(i); }),
-                  indices.end());
-    std::sort(indices.begin(), indices.end());
-    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
-    if (!f.parallel) {
-      for (int i : indices) evaluate(i);
-      return;
-    }
-    std::mutex m;
-    size_t finished = 0;
-    for (int i : indices) {
-      pool_->post([&, i] {
-        evaluate(i);
-        std::lock_guard<std::mutex> lock(m);
-        ++finished;
-      });
-    }
-    pool_->helpUntil([&] {
-      std::lock_guard<std::mutex> lock(m);
-      return finished == indices.size();
-    });
-  };
-
-  if (f.search == "coarse_to_fine" && count > 3) {
-    // A coarse grid, then halve the spacing around the best so far. Reaches the optimum of a
-    // unimodal score in O(sqrt(N) + log N) trials instead of N.
-    int spacing = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
-    std::vector<int> grid;
-    for (int i = 0; i < count; i += spacing) grid.push_back(i);
-    grid.push_back(count - 1);
-    evaluateAll(grid);
-    if (best < 0) {  // the score exists only in a narrow band the grid missed: sweep everything
-      std::vector<int> all(count);
-      for (int i = 0; i < count; ++i) all[i] = i;
-      evaluateAll(all);
-    }
-    while (best >= 0 && spacing > 1) {
-      spacing = (spacing + 1) / 2;
-      int centre = best;
-      evaluateAll({centre - spacing, centre + spacing});
-      if (spacing == 1) evaluateAll({best - 1, best + 1});
-    }
-  } else {
-    std::vector<int> all(count);
-    for (int i = 0; i < count; ++i) all[i] = i;
-    evaluateAll(all);
   }
-
   if (cancelled()) {
     skipCancelled(node, report);
     return;
   }
 
-  // The trace: every evaluated (value, score), the chosen value.
+  // The trace: every (value, score) in the order tried, why the search stopped, the chosen value.
+  const int best = search.best();
   auto trace = boost::make_shared<FeedbackTrace>();
   trace->block = n.name;
   trace->property = f.property;
   trace->score = f.score_block + "." + f.score_port;
   trace->maximize = f.maximize;
-  trace->candidates = count;
-  trace->trials = scores.size();
-  for (const auto& kv : scores) {
-    trace->values.push_back(candidates[kv.first]);
-    trace->scores.push_back(kv.second);
+  trace->candidates = search.candidates();
+  trace->trials = search.trials().size();
+  for (const auto& t : search.trials()) {
+    trace->values.push_back(t.value);
+    trace->scores.push_back(t.score);
   }
+  trace->stop_reason = FeedbackSearch::stopName(search.stop());
   trace->found = best >= 0;
-  trace->chosen_value = best >= 0 ? candidates[best] : std::numeric_limits<double>::quiet_NaN();
-  trace->chosen_score = best >= 0 ? scores[best] : std::numeric_limits<double>::quiet_NaN();
+  trace->chosen_value = best >= 0 ? search.trials()[best].value : std::numeric_limits<double>::quiet_NaN();
+  trace->chosen_score = best >= 0 ? search.trials()[best].score : std::numeric_limits<double>::quiet_NaN();
   const int trace_port = n.block->outputIndex("feedback_trace");
 
   if (best < 0) {
@@ -566,6 +554,23 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
   for (int m : region) finish(m, BlockStatus::Ok, "", 0.0, false);
   std::lock_guard<std::mutex> lock(report_mutex_);
   for (int m : region) report.ran.push_back(net_->node(m).name);
+}
+
+void Executor::runParallel(size_t count, const std::function<void(size_t)>& task) {
+  if (count == 1) return task(0);
+  std::mutex m;
+  size_t finished = 0;
+  for (size_t k = 0; k < count; ++k) {
+    pool_->post([&, k] {
+      task(k);
+      std::lock_guard<std::mutex> lock(m);
+      ++finished;
+    });
+  }
+  pool_->helpUntil([&] {
+    std::lock_guard<std::mutex> lock(m);
+    return finished == count;
+  });
 }
 
 }  // namespace imagenets

@@ -105,6 +105,11 @@ void drawNet(std::ostream& os, const Net& net, const std::string& prefix, bool e
       os << indent << prefix << "b" << score << ":o_" << n.feedback->score_port << " -> " << id
          << " [style=dashed, color=\"#555555\", constraint=false, label=\"feedback: " << xmlEscape(n.feedback->property)
          << " (" << (n.feedback->maximize ? "max" : "min") << ")\"];\n";
+      for (const FeedbackInitial& init : n.feedback->initial) {
+        if (!init.fromPort()) continue;
+        os << indent << prefix << "b" << net.findNode(init.block) << ":o_" << init.port << ":e -> " << id
+           << " [style=dotted, color=\"#555555\", label=\"initial " << escape(n.feedback->property) << "\"];\n";
+      }
     }
   }
 }

@@ -1,6 +1,7 @@
 #include "imagenets/net.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -22,6 +23,14 @@ thread_local const NetSpec* current_spec = nullptr;
 const NetSpec* LoadContext::current() { return current_spec; }
 LoadContext::Scope::Scope(const NetSpec& spec) : previous_(current_spec) { current_spec = &spec; }
 LoadContext::Scope::~Scope() { current_spec = previous_; }
+
+std::string FeedbackInitial::str() const {
+  if (fromPort()) return block + "." + port;
+  std::ostringstream os;
+  os.precision(12);
+  os << value;
+  return os.str();
+}
 
 std::string SourceLocation::str() const {
   if (line <= 0) return file;
@@ -102,16 +111,64 @@ struct Parser {
     }
   }
 
+  // One number of a `feedback:` key; on a bad value an error naming key and value, and nullopt.
+  std::optional<double> feedbackNumber(const YAML::Node& node, const std::string& where, const std::string& key) {
+    const YAML::Node v = node[key];
+    double d = 0;
+    if (!v.IsScalar() || !YAML::convert<double>::decode(v, d) || !std::isfinite(d)) {
+      error(v, where + key + " '" + text(v) + "' is not a number");
+      return std::nullopt;
+    }
+    return d;
+  }
+
+  // `initial`: a number, block.port, or a list of them.
+  void parseInitial(const YAML::Node& node, const std::string& where, FeedbackSpec& f) {
+    std::vector<YAML::Node> items;
+    if (node.IsSequence()) {
+      for (const auto& item : node) items.push_back(item);
+    } else {
+      items.push_back(node);
+    }
+    if (items.empty()) error(node, where + "'initial' is empty");
+    for (const YAML::Node& item : items) {
+      FeedbackInitial init;
+      if (!item.IsScalar()) {
+        error(item, where + "initial '" + text(item) + "' is neither a number nor block.port");
+        continue;
+      }
+      if (YAML::convert<double>::decode(item, init.value)) {
+        if (!std::isfinite(init.value)) {
+          error(item, where + "initial '" + item.Scalar() + "' is not a finite number");
+          continue;
+        }
+      } else {
+        const std::string s = item.Scalar();
+        auto dot = s.find('.');
+        if (dot == std::string::npos || dot == 0 || dot + 1 == s.size() || s.find('.', dot + 1) != std::string::npos) {
+          error(item, where + "initial '" + s + "' is neither a number nor block.port");
+          continue;
+        }
+        init.block = s.substr(0, dot);
+        init.port = s.substr(dot + 1);
+      }
+      f.initial.push_back(init);
+    }
+  }
+
   void parseFeedback(const std::string& block, const YAML::Node& node, BlockSpec& b) {
     const std::string where = "block '" + block + "': feedback: ";
     if (!node.IsMap()) {
       error(node, where + "expected a map with property, from/to/step (or values), score, goal");
       return;
     }
-    static const std::set<std::string> known{"property", "from", "to", "step", "values", "score", "goal", "search", "parallel"};
+    static const std::set<std::string> known{"property", "from",    "to",          "step",        "values",
+                                             "score",    "goal",    "search",      "parallel",    "initial",
+                                             "good_enough", "coarse_step", "fine_radius"};
     for (const auto& kv : node) {
       if (!known.count(kv.first.Scalar())) error(kv.first, where + "unknown key '" + kv.first.Scalar() + "'");
     }
+    const size_t errors_before = errors.size();
     FeedbackSpec f;
     f.loc = at(node);
     try {
@@ -129,7 +186,9 @@ struct Parser {
       if (f.search != "exhaustive" && f.search != "coarse_to_fine") {
         return error(node["search"], where + "search '" + f.search + "' is neither exhaustive nor coarse_to_fine");
       }
-      f.parallel = node["parallel"] ? node["parallel"].as<bool>() : true;
+      if (node["parallel"] && (!node["parallel"].IsScalar() || !YAML::convert<bool>::decode(node["parallel"], f.parallel))) {
+        return error(node["parallel"], where + "parallel '" + text(node["parallel"]) + "' is neither true nor false");
+      }
       if (node["values"]) {
         if (node["from"] || node["to"] || node["step"]) {
           return error(node, where + "give either 'values' or 'from/to/step', not both");
@@ -138,20 +197,43 @@ struct Parser {
         if (f.values.empty()) return error(node["values"], where + "'values' is empty");
       } else {
         if (!node["from"] || !node["to"]) return error(node, where + "missing 'from'/'to' (or 'values')");
-        double from = node["from"].as<double>(), to = node["to"].as<double>();
-        double step = node["step"] ? node["step"].as<double>() : 1.0;
-        if (!(step > 0)) return error(node["step"] ? node["step"] : node, where + "step " + text(node["step"]) + " must be > 0");
-        if (to < from) {
+        f.from = feedbackNumber(node, where, "from");
+        f.to = feedbackNumber(node, where, "to");
+        f.step = node["step"] ? feedbackNumber(node, where, "step") : std::optional<double>(1.0);
+        if (!f.from || !f.to || !f.step) return;
+        if (!(*f.step > 0)) return error(node["step"] ? node["step"] : node, where + "step " + text(node["step"]) + " must be > 0");
+        if (*f.to < *f.from) {
           return error(node, where + "range from " + text(node["from"]) + " to " + text(node["to"]) + " is inverted");
         }
         // Count steps with a tolerance so 40..80 step 0.1 ends at 80, not 79.9.
-        size_t n = static_cast<size_t>(std::floor((to - from) / step + 1e-9)) + 1;
-        for (size_t i = 0; i < n; ++i) f.values.push_back(from + step * static_cast<double>(i));
+        size_t n = static_cast<size_t>(std::floor((*f.to - *f.from) / *f.step + 1e-9)) + 1;
+        for (size_t i = 0; i < n; ++i) f.values.push_back(*f.from + *f.step * static_cast<double>(i));
+      }
+      if (node["initial"]) parseInitial(node["initial"], where, f);
+      if (node["good_enough"]) f.good_enough = feedbackNumber(node, where, "good_enough");
+      if (node["coarse_step"] || node["fine_radius"]) {
+        const YAML::Node key = node["coarse_step"] ? node["coarse_step"] : node["fine_radius"];
+        if (f.search != "coarse_to_fine") {
+          return error(key, where + "coarse_step and fine_radius need search: coarse_to_fine (search is " + f.search + ")");
+        }
+        if (!f.from) return error(key, where + "coarse_step and fine_radius need from/to/step, not 'values'");
+        if (!node["coarse_step"] || !node["fine_radius"]) {
+          return error(key, where + "give both coarse_step and fine_radius (only " +
+                                (node["coarse_step"] ? "coarse_step" : "fine_radius") + " is given)");
+        }
+        f.coarse_step = feedbackNumber(node, where, "coarse_step");
+        f.fine_radius = feedbackNumber(node, where, "fine_radius");
+        if (f.coarse_step && !(*f.coarse_step > 0)) {
+          error(node["coarse_step"], where + "coarse_step " + text(node["coarse_step"]) + " must be > 0");
+        }
+        if (f.fine_radius && *f.fine_radius < 0) {
+          error(node["fine_radius"], where + "fine_radius " + text(node["fine_radius"]) + " must be >= 0");
+        }
       }
     } catch (const YAML::Exception& e) {
       return error(node, where + "bad value: " + e.msg);
     }
-    b.feedback = f;
+    if (errors.size() == errors_before) b.feedback = f;
   }
 
   void parseBlock(const YAML::Node& key, const YAML::Node& body, NetSpec& spec) {
@@ -373,6 +455,40 @@ std::unique_ptr<Net> Net::build(const NetSpec& spec) {
     if (std::find(down.begin(), down.end(), to) == down.end()) down.push_back(to);
   }
 
+  // Feedback candidates taken from another block's output (`initial: block.port`): that block must
+  // run before the sweep, so it feeds the tuned block like a link (it joins the dependency order).
+  for (size_t i = 0; i < net->nodes_.size(); ++i) {
+    const Node& n = net->nodes_[i];
+    if (!n.feedback) continue;
+    const std::string at = n.feedback->loc.str() + ": block '" + n.name + "': feedback: initial ";
+    for (const FeedbackInitial& init : n.feedback->initial) {
+      if (!init.fromPort()) continue;
+      const int from = net->findNode(init.block);
+      if (from < 0) {
+        if (!names.count(init.block)) errors.push_back(at + init.str() + ": no block named '" + init.block + "'");
+        continue;
+      }
+      const PortSpec* port = net->nodes_[from].block->findOutput(init.port);
+      if (!port) {
+        errors.push_back(at + init.str() + ": block '" + init.block + "' has no output port '" + init.port +
+                         "' (outputs: " + portList(net->nodes_[from].block->outputs()) + ")");
+        continue;
+      }
+      if (port->type->name != "std_msgs/Float64") {
+        errors.push_back(at + init.str() + " is " + port->type->name + ", not std_msgs/Float64");
+        continue;
+      }
+      const auto below = net->descendants(static_cast<int>(i));
+      if (from == static_cast<int>(i) || std::find(below.begin(), below.end(), from) != below.end()) {
+        errors.push_back(at + init.str() + ": block '" + init.block + "' is not upstream of the feedback region of '" +
+                         n.name + "' (it must run before the sweep, outside the region)");
+        continue;
+      }
+      auto& down = net->nodes_[from].downstream;
+      if (std::find(down.begin(), down.end(), static_cast<int>(i)) == down.end()) down.push_back(static_cast<int>(i));
+    }
+  }
+
   // Event flow needs an acyclic net (feedback is declared on a block, never as a link).
   std::vector<int> indegree(net->nodes_.size(), 0);
   for (const Node& n : net->nodes_) {
@@ -418,6 +534,14 @@ std::unique_ptr<Net> Net::build(const NetSpec& spec) {
           } catch (const PropertyError& e) {
             errors.push_back(at + "candidate for '" + f.property + "': " + e.what());
             break;
+          }
+        }
+        for (const FeedbackInitial& init : f.initial) {
+          if (init.fromPort()) continue;
+          try {
+            ps->fromNumber(init.value);
+          } catch (const PropertyError& e) {
+            errors.push_back(at + "initial " + init.str() + " for '" + f.property + "': " + e.what());
           }
         }
       }

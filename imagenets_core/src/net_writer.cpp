@@ -69,6 +69,16 @@ YAML::Node feedbackNode(const FeedbackSpec& f) {
   node["goal"] = f.maximize ? "maximize" : "minimize";
   node["search"] = f.search;
   node["parallel"] = f.parallel ? "true" : "false";
+  if (!f.initial.empty()) {
+    YAML::Node initial(YAML::NodeType::Sequence);
+    for (const FeedbackInitial& i : f.initial) initial.push_back(i.fromPort() ? i.block + "." + i.port : formatNumber(i.value));
+    node["initial"] = f.initial.size() == 1 ? initial[0] : initial;
+  }
+  if (f.good_enough) node["good_enough"] = formatNumber(*f.good_enough);
+  if (f.coarse_step && f.fine_radius) {
+    node["coarse_step"] = formatNumber(*f.coarse_step);
+    node["fine_radius"] = formatNumber(*f.fine_radius);
+  }
   return node;
 }
 

@@ -4,6 +4,7 @@
 #include <std_msgs/Float64.h>
 
 #include "imagenets/executor.h"
+#include "imagenets/graph.h"
 #include "test_blocks.h"
 
 using namespace imagenets;
@@ -198,4 +199,165 @@ TEST_F(FeedbackTest, ManyParallelSweepsNeverDeadlock) {
     ASSERT_TRUE(e->run().ok());
     ASSERT_DOUBLE_EQ(e->output<FeedbackTrace>("x.feedback_trace")->chosen_value, i % 31);
   }
+}
+
+// --- initial, good_enough, explicit coarse-to-fine -------------------------------------------
+
+namespace {
+// `guess` (outside the region) provides the initial candidate; x is tuned; score = -(x - peak)^2.
+std::string initialNet(const std::string& feedback, double guess, double peak) {
+  return R"(
+blocks:
+  guess: {type: test/Constant, properties: {value: )" + std::to_string(guess) + R"(}}
+  x:
+    type: test/Constant
+    feedback: )" + feedback + R"(
+  score: {type: test/Parabola, properties: {peak: )" + std::to_string(peak) + R"(}}
+  after: {type: test/Scale, properties: {gain: 10}}
+links:
+  - x.value -> score.x
+  - x.value -> after.in
+)";
+}
+}  // namespace
+
+TEST_F(FeedbackTest, InitialFromAPortIsTriedFirstAndGoodEnoughStopsThere) {
+  auto e = load(initialNet("{property: value, from: 0, to: 100, score: score.score, initial: guess.value, "
+                           "good_enough: -1}", 42, 42.5));
+  ASSERT_TRUE(e->run().ok());
+  auto trace = e->output<FeedbackTrace>("x.feedback_trace");
+  EXPECT_EQ(trace->values, (std::vector<double>{42}));  // -0.25 >= -1: no sweep at all
+  EXPECT_EQ(trace->stop_reason, "good_enough");
+  EXPECT_EQ(trace->chosen_value, 42);
+  EXPECT_EQ(imagenets::test::calls("x"), 1);
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("after.out")->data, 420);
+  // The providing block changes: the sweep runs again from its new value.
+  e->setProperty("guess", "value", 7.0);
+  ASSERT_TRUE(e->run().ok());
+  trace = e->output<FeedbackTrace>("x.feedback_trace");
+  EXPECT_EQ(trace->values.front(), 7);
+  EXPECT_EQ(trace->chosen_value, 42);  // 7 is not good enough: the sweep reaches 42 (first >= -1 in order)
+  EXPECT_EQ(trace->values.size(), 43u);  // 7, then 0..42 without 7
+}
+
+TEST_F(FeedbackTest, GoodEnoughWhenMinimizingMeansAtMost) {
+  auto e = load(sweepNet("{property: value, from: 0, to: 10, score: score.score, goal: minimize, good_enough: -20}", 5));
+  e->run();
+  auto trace = e->output<FeedbackTrace>("x.feedback_trace");
+  EXPECT_EQ(trace->values, (std::vector<double>{0}));  // -(0 - 5)^2 = -25 <= -20
+  EXPECT_EQ(trace->stop_reason, "good_enough");
+}
+
+TEST_F(FeedbackTest, InitialConstantsAndOrderTried) {
+  auto e = load(sweepNet("{property: value, from: 0, to: 4, score: score.score, initial: [3, 1]}", 2));
+  e->run();
+  auto trace = e->output<FeedbackTrace>("x.feedback_trace");
+  EXPECT_EQ(trace->values, (std::vector<double>{3, 1, 0, 2, 4}));
+  EXPECT_EQ(trace->stop_reason, "all_tried");
+  EXPECT_EQ(trace->chosen_value, 2);
+}
+
+TEST_F(FeedbackTest, ExplicitCoarseToFineTriesTheGridThenAroundTheBest) {
+  auto e = load(sweepNet("{property: value, from: 30, to: 210, step: 5, search: coarse_to_fine, coarse_step: 30, "
+                         "fine_radius: 10, score: score.score}", 101));
+  e->run();
+  auto trace = e->output<FeedbackTrace>("x.feedback_trace");
+  EXPECT_EQ(trace->values, (std::vector<double>{30, 60, 90, 120, 150, 180, 210, 80, 85, 95, 100}));
+  EXPECT_EQ(trace->chosen_value, 100);
+  EXPECT_EQ(trace->stop_reason, "finished");
+  EXPECT_EQ(trace->candidates, 37u);
+}
+
+TEST_F(FeedbackTest, ParallelAndSequentialAgreeExactlyWithInitialGoodEnoughAndCoarseToFine) {
+  for (const std::string extra : {"search: coarse_to_fine, coarse_step: 0.5, fine_radius: 0.3",
+                                  "good_enough: -0.05", "search: coarse_to_fine, good_enough: -0.01",
+                                  "search: coarse_to_fine"}) {
+    const std::string fb = "{property: value, from: 0, to: 3, step: 0.1, score: score.score, initial: guess.value, " +
+                           extra + ", parallel: ";
+    auto seq = load(initialNet(fb + "false}", 2.95, 1.73), 1);
+    auto par = load(initialNet(fb + "true}", 2.95, 1.73), 3);
+    ASSERT_TRUE(seq->run().ok());
+    ASSERT_TRUE(par->run().ok());
+    auto a = seq->output<FeedbackTrace>("x.feedback_trace");
+    auto b = par->output<FeedbackTrace>("x.feedback_trace");
+    EXPECT_EQ(a->values, b->values) << extra;
+    EXPECT_EQ(a->scores, b->scores) << extra;
+    EXPECT_EQ(a->stop_reason, b->stop_reason) << extra;
+    EXPECT_EQ(a->chosen_value, b->chosen_value) << extra;
+    EXPECT_EQ(a->values.front(), 2.95) << extra;  // the initial value first
+    EXPECT_EQ(seq->output<std_msgs::Float64>("after.out")->data, par->output<std_msgs::Float64>("after.out")->data);
+  }
+}
+
+TEST_F(FeedbackTest, AnInitialPortWithoutAValueAddsNoCandidate) {
+  auto e = load(R"(
+blocks:
+  broken: {type: test/Scale, properties: {fail: true}}
+  c: {type: test/Constant}
+  x: {type: test/Constant, feedback: {property: value, values: [1, 2], score: score.score, initial: broken.out}}
+  score: {type: test/Parabola, properties: {peak: 2}}
+links: [c.value -> broken.in, x.value -> score.x]
+)");
+  RunReport r = e->run();
+  ASSERT_EQ(r.failed.size(), 1u);  // `broken` only; the sweep went on
+  EXPECT_EQ(e->output<FeedbackTrace>("x.feedback_trace")->values, (std::vector<double>{1, 2}));
+}
+
+TEST_F(FeedbackTest, NewKeysValidationErrorsNameFileLineBlockKeyAndValue) {
+  auto has = [](const std::string& text, const std::string& part) {
+    EXPECT_NE(text.find(part), std::string::npos) << "missing \"" << part << "\" in:\n" << text;
+  };
+  const std::string x = "fb.yaml:5: block 'x': feedback: ";
+  has(loadError(sweepNet("{property: value, from: 0, to: 9, score: score.score, good_enough: high}")),
+      x + "good_enough 'high' is not a number");
+  has(loadError(sweepNet("{property: value, from: 0, to: 9, score: score.score, initial: [1, 'a b']}")),
+      x + "initial 'a b' is neither a number nor block.port");
+  has(loadError(sweepNet("{property: value, from: 0, to: 9, score: score.score, initial: {a: 1}}")),
+      x + "initial '{a: 1}' is neither a number nor block.port");
+  has(loadError(sweepNet("{property: value, from: 0, to: 9, score: score.score, coarse_step: 3, fine_radius: 1}")),
+      x + "coarse_step and fine_radius need search: coarse_to_fine (search is exhaustive)");
+  has(loadError(sweepNet("{property: value, values: [1, 2], search: coarse_to_fine, score: score.score, "
+                         "coarse_step: 3, fine_radius: 1}")),
+      x + "coarse_step and fine_radius need from/to/step, not 'values'");
+  has(loadError(sweepNet("{property: value, from: 0, to: 9, search: coarse_to_fine, score: score.score, coarse_step: 3}")),
+      x + "give both coarse_step and fine_radius (only coarse_step is given)");
+  has(loadError(sweepNet("{property: value, from: 0, to: 9, search: coarse_to_fine, score: score.score, "
+                         "coarse_step: 0, fine_radius: -2}")),
+      x + "coarse_step 0 must be > 0");
+  has(loadError(sweepNet("{property: value, from: 0, to: 9, search: coarse_to_fine, score: score.score, "
+                         "coarse_step: 0, fine_radius: -2}")),
+      x + "fine_radius -2 must be >= 0");
+  has(loadError(sweepNet("{property: value, from: 0, to: 9, score: score.score, parallel: maybe}")),
+      x + "parallel 'maybe' is neither true nor false");
+  has(loadError(sweepNet("{property: value, from: zero, to: 9, score: score.score}")),
+      x + "from 'zero' is not a number");
+  // Initial ports: checked when the net is built.
+  const std::string i = "fb.yaml:6: block 'x': feedback: initial ";
+  has(loadError(initialNet("{property: value, from: 0, to: 9, score: score.score, initial: nothing.value}", 1, 1)),
+      i + "nothing.value: no block named 'nothing'");
+  has(loadError(initialNet("{property: value, from: 0, to: 9, score: score.score, initial: guess.nope}", 1, 1)),
+      i + "guess.nope: block 'guess' has no output port 'nope' (outputs: value [std_msgs/Float64])");
+  has(loadError(initialNet("{property: value, from: 0, to: 9, score: score.score, initial: x.feedback_trace}", 1, 1)),
+      i + "x.feedback_trace is imagenets/FeedbackTrace, not std_msgs/Float64");
+  has(loadError(initialNet("{property: value, from: 0, to: 9, score: score.score, initial: score.score}", 1, 1)),
+      i + "score.score: block 'score' is not upstream of the feedback region of 'x'");
+  has(loadError(initialNet("{property: value, from: 0, to: 9, score: score.score, initial: after.out}", 1, 1)),
+      i + "after.out: block 'after' is not upstream of the feedback region of 'x'");
+  has(loadError(R"(
+blocks:
+  c: {type: test/Constant}
+  s: {type: test/Scale, feedback: {property: offset, from: 0, to: 10, score: p.score, initial: 5000}}
+  p: {type: test/Parabola}
+links: [c.value -> s.in, s.out -> p.x]
+)"),
+      "block 's': feedback: initial 5000 for 'offset': value 5000 is out of range [-1000, 1000]");
+}
+
+TEST_F(FeedbackTest, TheGraphDrawsWhereTheInitialCandidateComesFrom) {
+  const std::string dot =
+      toDot(*Net::build(parseNetText(initialNet("{property: value, from: 0, to: 9, score: score.score, "
+                                                "initial: guess.value}", 1, 1), "fb.yaml", "")));
+  // guess is b0, x is b1: a dotted edge from guess's output to the tuned block.
+  EXPECT_NE(dot.find("b0:o_value:e -> b1 [style=dotted, color=\"#555555\", label=\"initial value\"]"), std::string::npos)
+      << dot;
 }

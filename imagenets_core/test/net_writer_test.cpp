@@ -20,7 +20,8 @@ blocks:
     type: test/Scale
     doc: the gain is tuned
     properties: {gain: 3, offset: -4}
-    feedback: {property: gain, from: 0.5, to: 2.5, step: 0.1, score: score.score, goal: minimize, search: coarse_to_fine, parallel: false}
+    feedback: {property: gain, from: 0.5, to: 2.5, step: 0.1, score: score.score, goal: minimize, search: coarse_to_fine, parallel: false,
+               initial: [a.value, 1.25], good_enough: -0.5, coarse_step: 0.5, fine_radius: 0.2}
   c: {type: test/Barrier, properties: {group: "a: b, c", parties: 1}}
   score: {type: test/Parabola, properties: {peak: 4}}
 links:
@@ -54,6 +55,12 @@ TEST(NetWriter, WrittenNetReadsBackAsTheSameNet) {
   EXPECT_FALSE(f.maximize);
   EXPECT_EQ(f.search, "coarse_to_fine");
   EXPECT_FALSE(f.parallel);
+  ASSERT_EQ(f.initial.size(), 2u) << text;
+  EXPECT_EQ(f.initial[0].str(), "a.value");
+  EXPECT_EQ(f.initial[1].value, 1.25);
+  EXPECT_EQ(f.good_enough, -0.5);
+  EXPECT_EQ(f.coarse_step, 0.5);
+  EXPECT_EQ(f.fine_radius, 0.2);
   ASSERT_EQ(back.links.size(), 2u);
   EXPECT_EQ(back.links[1].from_block + "." + back.links[1].from_port + " -> " + back.links[1].to_block + "." +
                 back.links[1].to_port,

@@ -117,6 +117,7 @@ TEST(Tool, RunWritesTheFeedbackTrace) {
   std::stringstream ss;
   ss << in.rdbuf();
   expectContains(ss.str(), "trials: 41");
+  expectContains(ss.str(), "stop_reason: all_tried");
   expectContains(ss.str(), "found: 1");
   EXPECT_TRUE(boost::filesystem::exists(dir + "/threshold.feedback_trace.png"));
 }

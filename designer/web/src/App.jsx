@@ -1,6 +1,7 @@
 import React, { useCallback, useEffect, useMemo, useRef, useState } from 'react';
 import {
   ReactFlow, ReactFlowProvider, Background, Controls, MiniMap, applyNodeChanges, applyEdgeChanges, useReactFlow,
+  useUpdateNodeInternals,
 } from '@xyflow/react';
 import { Connection } from './connection.js';
 import { BlockNode } from './BlockNode.jsx';
@@ -119,6 +120,16 @@ function Designer() {
       store(data);
     }
   };
+
+  // A link to a block that has just appeared may come before the canvas measured the block's
+  // ports; measuring the ends of new links again makes sure every link is drawn.
+  const updateNodeInternals = useUpdateNodeInternals();
+  const drawnLinks = useRef(new Set());
+  useEffect(() => {
+    const fresh = edges.filter((e) => !drawnLinks.current.has(e.id));
+    drawnLinks.current = new Set(edges.map((e) => e.id));
+    if (fresh.length) requestAnimationFrame(() => updateNodeInternals([...new Set(fresh.flatMap((e) => [e.source, e.target]))]));
+  }, [edges]);
 
   // Only ports that still exist are watched (a block may have gone by an edit in any tab).
   const watchedPorts = useMemo(() => JSON.stringify([...watched].filter((key) => {
@@ -313,6 +324,7 @@ function Designer() {
         <button data-testid="save-as" onClick={() => setDialog({ kind: 'saveas' })}>Save as</button>
         <span className="sep" />
         <button data-testid="run" title="Ctrl+Enter" onClick={() => run('run')}>▶ Run</button>
+        <button data-testid="run-all" title="run every block, cached or not" onClick={() => run('run_all')}>Run all</button>
         <button data-testid="run-block" disabled={!selectedBlock} onClick={() => run('run_block', { block: selectedBlock.name })}>Run block</button>
         <button data-testid="cancel" disabled={!running.size} onClick={() => attempt('cancel')}>Cancel</button>
         <label title="re-run the changed block and its downstream after each property change">

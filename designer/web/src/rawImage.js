@@ -14,20 +14,26 @@ export function imageLayout(encoding) {
   return layout;
 }
 
-// The value(s) at (x, y), as numbers, in the message's channel order.
-export function pixelValues(header, payload, x, y) {
+// A reader of the value(s) at (x, y), as numbers, in the message's channel order.
+export function pixelReader(header, payload) {
   const { channels, bytes, float } = imageLayout(header.encoding);
   const view = new DataView(payload.buffer, payload.byteOffset, payload.byteLength);
-  const bigEndian = !!header.is_bigendian;
-  const offset = y * header.step + x * channels * bytes;
-  const values = [];
-  for (let c = 0; c < channels; ++c) {
-    const at = offset + c * bytes;
-    if (float) values.push(view.getFloat32(at, !bigEndian));
-    else if (bytes === 2) values.push(view.getUint16(at, !bigEndian));
-    else values.push(view.getUint8(at));
-  }
-  return values;
+  const little = !header.is_bigendian;
+  return (x, y) => {
+    const offset = y * header.step + x * channels * bytes;
+    const values = [];
+    for (let c = 0; c < channels; ++c) {
+      const at = offset + c * bytes;
+      if (float) values.push(view.getFloat32(at, little));
+      else if (bytes === 2) values.push(view.getUint16(at, little));
+      else values.push(view.getUint8(at));
+    }
+    return values;
+  };
+}
+
+export function pixelValues(header, payload, x, y) {
+  return pixelReader(header, payload)(x, y);
 }
 
 // RGBA for display; 16-bit and float images are stretched over their finite min..max.
@@ -35,7 +41,7 @@ export function toImageData(header, payload) {
   const { width, height, encoding } = header;
   const { channels } = imageLayout(encoding);
   const out = new ImageData(width, height);
-  const values = (x, y) => pixelValues(header, payload, x, y);
+  const values = pixelReader(header, payload);
   let lo = 0, hi = 255;
   if (encoding === 'mono16' || encoding === '16UC1' || encoding === '32FC1') {
     lo = Infinity; hi = -Infinity;

@@ -61,7 +61,7 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
       failed = true;
       const shot = path.join(dir, 'failed-step.png');
       await page.screenshot({ path: shot }).catch(() => {});
-      throw new Error(`${e.message}\n(page at the failure: ${shot}; message: ${JSON.stringify(await message(page).catch(() => null))})`, { cause: e });
+      throw new Error(`${e.message}\n(page at the failure: ${shot}; message: ${JSON.stringify(await message(page).catch(() => null))}; console: ${page.logs.slice(-10).join(' | ')})`, { cause: e });
     }
   });
   const canvas = await (await page.$('.canvas')).boundingBox();
@@ -286,6 +286,13 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     assert.match(text, /feedback:/);
     assert.match(text, new RegExp(`score: ${quality}\\.score`));
   });
+  await step('opens the sub-net\'s own file for editing', async () => {
+    await click(page, `${nodeSel(executor)} button[title="open the sub-net"]`);
+    await click(page, '[data-testid="subnet-edit"]');
+    await until('the inner net open', async () =>
+      (await page.$eval('[data-testid="file-name"]', (e) => e.textContent)) === 'segmentation_subnet.yaml');
+    assert.deepEqual((await blockNames(page)).sort(), ['binary', 'blur', 'gray', 'image', 'threshold']);
+  });
   assert.deepEqual(page.errors, []);
 });
 
@@ -321,6 +328,16 @@ test('the 3D view draws the stereo point cloud', { timeout: 300000 }, async (t) 
     return differing > 5000 ? differing : null;
   }));
   assert.ok(drawn > 5000, `${drawn} pixels differ from the background`);
+  await closeDialog(page);
+  // The disparity (32FC1) in the image dialog: a float within the searched range at the centre.
+  await click(page, 'button.open-data[data-port="disparity.disparity"]');
+  const canvas = await page.waitForSelector('.image-canvas[data-scale]', { timeout: LONG });
+  const size = await page.$eval('[data-testid="pixel-readout"]', (r) => r.textContent.match(/^(\d+)x(\d+) (\S+)/).slice(1));
+  assert.equal(size[2], '32FC1');
+  const readout = await readPixel(page, Math.floor(Number(size[0]) / 2), Math.floor(Number(size[1]) / 2));
+  const value = Number(readout.match(/value=(-?[\d.]+)/)[1]);
+  assert.ok(value > 0 && value <= 64, readout);
+  assert.ok(canvas);
   assert.deepEqual(page.errors, []);
 });
 
@@ -386,4 +403,43 @@ test('files: open, the YAML pane, export; a second tab sees the same net', { tim
   const svgText = await page.$eval('[data-testid="export-dialog"] .export-svg svg', (s) => s.textContent);
   for (const name of ['source', 'gray', 'smooth', 'threshold']) assert.match(svgText, new RegExp(name));
   assert.deepEqual([...page.errors, ...second.errors], []);
+});
+
+test('a running block is highlighted and a long run can be cancelled', { timeout: 300000 }, async (t) => {
+  const dir = tempDir('cancel');
+  const image = path.join(dir, 'big.png');
+  const made = run('convert', ['-size', '1024x768', 'gradient:black-white', image]);
+  assert.equal(made.code, 0, made.out);
+  const net = path.join(dir, 'sweep.yaml');
+  // A feedback sweep over every threshold, one candidate at a time: long enough to be seen running.
+  fs.writeFileSync(net, `blocks:
+  source: {type: imagenets/ImageFileSource, properties: {path: ${image}}}
+  gray: {type: imagenets/Grayscale}
+  threshold:
+    type: imagenets/Threshold
+    feedback: {property: threshold, from: 0, to: 255, step: 1, score: quality.score, goal: maximize, parallel: false}
+  quality: {type: imagenets/SegmentationQuality}
+links:
+  - source.image -> gray.image
+  - gray.image -> threshold.image
+  - gray.image -> quality.gray
+  - threshold.image -> quality.binary
+`);
+  const designer = await startDesigner({ net });
+  t.after(() => designer.stop());
+  const page = await openDesigner(browser, designer.url);
+  await page.waitForSelector(nodeSel('threshold'), { timeout: LONG });
+  // Should a run end before the click lands (a fast machine), the user runs it again.
+  await until('a cancelled run', async () => {
+    await click(page, '[data-testid="run-all"]');
+    await page.waitForSelector('.block-node.running', { timeout: LONG });
+    await click(page, '[data-testid="cancel"]').catch(() => {});
+    const m = await until('the run to end', async () => {
+      const s = await message(page);
+      return /^ran \d+/.test(s.text) ? s.text : null;
+    });
+    return m.includes('cancelled');
+  }, 240000);
+  await until('no block highlighted', async () => !(await page.$('.block-node.running')));
+  assert.deepEqual(page.errors, []);
 });

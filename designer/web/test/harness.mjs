@@ -97,7 +97,9 @@ export async function openDesigner(browser, url, beforeLoad = async () => {}) {
   await beforeLoad(page);
   await page.setViewport({ width: 1600, height: 1000 });
   page.errors = [];
+  page.logs = [];
   page.on('pageerror', (e) => page.errors.push(e.message));
+  page.on('console', (m) => { if (m.type() === 'warn' || m.type() === 'error') page.logs.push(`${m.type()}: ${m.text()}`); });
   await page.goto(url);
   await page.waitForSelector('.designer', { timeout: LONG });
   return page;

@@ -1,8 +1,12 @@
-// Robust marker detection (paper 3.4, Fig. 3.3) on one camera image, as the calibration uses it:
-// the binarisation threshold is swept coarse-to-fine and the detection with the best pattern
-// confidence is kept (the net's feedback loop, here in code so the node runs it for both images
-// in parallel without a net file). A predicted marker pose (from the nominal model) restricts the
-// search to a region of interest and resolves the planar-pose ambiguity (IPPE's two solutions).
+// Robust marker detection (paper 3.4, Fig. 3.3) on one camera image, as the calibration uses it,
+// written by hand: the region's Otsu threshold first, stop as soon as a detection is good enough,
+// otherwise the threshold sweep coarse-to-fine. A detection scores its pattern confidence
+// penalised by how badly its (sub-pixel) corners fit the pose, and one that fits worse than a
+// limit is rejected. The net config/nets/calibration_marker_detection.yaml (calibration_marker_net.h)
+// declares the same with the engine's generic feedback (initial, good_enough, coarse_step,
+// fine_radius) and ordinary blocks for the score; friend_calibration/test/calibration_marker_net_test.cpp
+// shows they agree exactly. A predicted marker pose (from the nominal model) restricts the search
+// to a region of interest and resolves the planar-pose ambiguity (IPPE's two solutions).
 #pragma once
 
 #include <optional>
@@ -19,13 +23,17 @@ namespace friend_calibration {
 
 struct RobustDetectionOptions {
   int coarse_from = 30, coarse_to = 210, coarse_step = 30;  // threshold sweep, gray levels
-  int fine_radius = 10, fine_step = 5;                      // refinement around the best
+  // Then centre +- k * fine_step (k = 1 .. fine_radius / fine_step) around the best so far, within
+  // coarse_from..coarse_to (fine_step 0: no fine pass).
+  int fine_radius = 10, fine_step = 5;
   double min_confidence = 0.6;
-  // Stop early: the region's Otsu threshold is tried first, and a detection there with at least
-  // this pattern confidence and (refined) reprojection error at most `good_reprojection_px` is
-  // kept without sweeping (0 = always sweep). A disturbed marker fails these and gets the sweep.
-  double good_confidence = 0.95;
-  double good_reprojection_px = 0.1;
+  // Score of a detection: confidence - reprojection_penalty * its RMS reprojection error (px); a
+  // reflection that bends the border fits worse. Above max_reprojection_px it is rejected.
+  double reprojection_penalty = 1.0;
+  double max_reprojection_px = 1.0;
+  // Stop early: the first threshold (Otsu's first) whose detection scores at least this ends the
+  // search (0 = always sweep). A disturbed marker misses it and gets the sweep.
+  double good_score = 0.9;
   int roi_margin_px = 120;  // region of interest: predicted marker +- this (0 = whole image)
 };
 

@@ -105,6 +105,9 @@ class Executor {
   // region between the node and its score; keeps the best trial's outputs in `store`.
   void runFeedback(int node, Store& store, RunReport& report);
   double runTrial(int node, double candidate, const Store& base, Store& trial_store);
+  std::vector<double> initialCandidates(int node, const Store& store) const;
+  // Runs task(0..count-1) on the pool (the calling thread helps) and returns when all are done.
+  void runParallel(size_t count, const std::function<void(size_t)>& task);
   std::vector<Value> gatherInputs(int node, const Store& store, std::string& missing) const;
   BlockStats statsOf(int node) const;
   // Records a block's status; `counted` adds a process() call to its timings. Returns the stats.

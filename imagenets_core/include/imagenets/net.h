@@ -44,14 +44,25 @@ struct PropertySetting {
 };
 
 // Feedback (paper 3.4): tune one numeric property of the block to maximise (or minimise) a
-// score port downstream.
+// score port downstream. feedback_search.h decides which candidates are tried, in what order.
+struct FeedbackInitial {
+  double value = 0.0;      // a constant first candidate ...
+  std::string block, port; // ... or the value of another block's std_msgs/Float64 output
+  bool fromPort() const { return !block.empty(); }
+  std::string str() const;  // "otsu.threshold" or the number
+};
+
 struct FeedbackSpec {
   std::string property;
   std::vector<double> values;  // the candidates, from `from/to/step` or an explicit list
+  std::optional<double> from, to, step;  // when given as a range
   std::string score_block, score_port;
   bool maximize = true;
   std::string search = "exhaustive";  // or "coarse_to_fine"
   bool parallel = true;               // trials run in parallel on the thread pool
+  std::vector<FeedbackInitial> initial;       // tried first, in this order
+  std::optional<double> good_enough;          // stop at the first score at least (minimize: at most) this
+  std::optional<double> coarse_step, fine_radius;  // coarse_to_fine with an explicit grid
   SourceLocation loc;
 };
 

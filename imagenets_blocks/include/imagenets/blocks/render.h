@@ -53,6 +53,13 @@ struct CameraModel {
   static CameraModel fromCameraInfo(const sensor_msgs::CameraInfo& info);
   // Projects a point in the camera frame to distorted pixel coordinates (z must be > 0).
   cv::Point2d project(const Eigen::Vector3d& p_camera) const;
+  // The model of a region of this camera's image (size of the region, principal point moved).
+  CameraModel cropped(const cv::Rect& region) const;
+  // The square region around where an object of `size` metres centred at `p_camera` appears: its
+  // projected size plus `margin_px` on each side, clipped to the image. The whole image when
+  // margin_px <= 0, when the point is less than 5 cm in front of the camera, or when the clipped
+  // region is narrower than 16 pixels.
+  cv::Rect regionAround(const Eigen::Vector3d& p_camera, double size, int margin_px) const;
 };
 
 // One textured rectangle in the scene.

@@ -1,0 +1,49 @@
+// The calibration's robust marker detection run as a net (config/nets/calibration_marker_detection.yaml):
+// the same inputs and result as detectMarkerRobustly (marker_measurement.h), computed by the
+// engine's generic feedback instead of a hand-written sweep. One instance holds one loaded net;
+// detect() is not reentrant (use one instance per thread, e.g. per camera).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <Eigen/Geometry>
+#include <imagenets/FeedbackTrace.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+
+#include "friend_calibration/calibration.h"
+
+namespace imagenets {
+class Executor;
+struct NetSpec;
+}
+
+namespace friend_calibration {
+
+class CalibrationMarkerNet {
+ public:
+  // config/nets/calibration_marker_detection.yaml of this package.
+  static std::string defaultNetPath();
+  // Throws imagenets::NetError naming what is wrong in the net file. `threads` of the executor:
+  // 1 runs everything on the calling thread.
+  explicit CalibrationMarkerNet(const std::string& net_path = defaultNetPath(), int threads = 1);
+  // From a parsed net (e.g. one with an option changed).
+  CalibrationMarkerNet(const imagenets::NetSpec& spec, int threads);
+  ~CalibrationMarkerNet();
+
+  // `image`: mono8 (or colour); `predicted`: T_camera_marker from the nominal model. Never throws
+  // for a marker that is not there (found = false with the reason); throws std::invalid_argument
+  // naming the block for unusable inputs.
+  MarkerObservation detect(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfo& info,
+                           const std::optional<Eigen::Isometry3d>& predicted);
+  // The last search: thresholds in the order tried, their scores, why it stopped.
+  boost::shared_ptr<const imagenets::FeedbackTrace> lastTrace() const;
+  imagenets::Executor& executor() { return *executor_; }
+
+ private:
+  std::unique_ptr<imagenets::Executor> executor_;
+};
+
+}  // namespace friend_calibration

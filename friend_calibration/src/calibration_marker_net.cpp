@@ -1,0 +1,72 @@
+#include "friend_calibration/calibration_marker_net.h"
+
+#include <stdexcept>
+
+#include <geometry_msgs/PoseStamped.h>
+#include <imagenets/MarkerDetection.h>
+
+#include "friend_hw_sim/robot_model.h"
+#include "imagenets/blocks/marker_msgs.h"
+#include "imagenets/executor.h"
+
+namespace friend_calibration {
+
+std::string CalibrationMarkerNet::defaultNetPath() {
+  const std::string desc = friend_hw_sim::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
+  return desc.substr(0, desc.size() - std::string("friend/robot.yaml").size()) + "nets/calibration_marker_detection.yaml";
+}
+
+CalibrationMarkerNet::CalibrationMarkerNet(const std::string& net_path, int threads) {
+  imagenets::ExecutorOptions options;
+  options.threads = threads;
+  executor_ = imagenets::Executor::loadFile(net_path, options);
+}
+
+CalibrationMarkerNet::CalibrationMarkerNet(const imagenets::NetSpec& spec, int threads) {
+  imagenets::ExecutorOptions options;
+  options.threads = threads;
+  executor_ = std::make_unique<imagenets::Executor>(imagenets::Net::build(spec), options);
+}
+
+CalibrationMarkerNet::~CalibrationMarkerNet() = default;
+
+MarkerObservation CalibrationMarkerNet::detect(const sensor_msgs::ImageConstPtr& image,
+                                               const sensor_msgs::CameraInfo& info,
+                                               const std::optional<Eigen::Isometry3d>& predicted) {
+  executor_->setInput("image.value", image);
+  executor_->setInput("camera_info.value", boost::make_shared<const sensor_msgs::CameraInfo>(info));
+  if (predicted) {
+    auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
+    pose->header = info.header;
+    pose->pose = imagenets::marker::toPoseMsg(*predicted);
+    executor_->setInput("predicted_pose.value", boost::shared_ptr<const geometry_msgs::PoseStamped>(pose));
+  } else {
+    executor_->setInput("predicted_pose.value", imagenets::Value());
+  }
+  const imagenets::RunReport report = executor_->run();
+  MarkerObservation obs;
+  const auto detection = executor_->output<imagenets::MarkerDetection>("detector.detection");
+  const auto trace = lastTrace();
+  if (!report.ok() && !(trace && !trace->found)) {
+    std::string message;
+    for (const auto& f : report.failed) message += (message.empty() ? "" : "; ") + f;
+    throw std::invalid_argument(executor_->net().origin() + ": " + message);
+  }
+  if (!detection || !detection->found) {
+    obs.reason = report.ok() ? "marker lost when its corners were refined" : report.failed.front();
+    return obs;
+  }
+  obs.found = true;
+  obs.confidence = detection->confidence;
+  obs.threshold = trace->chosen_value;
+  obs.reprojection_error = detection->reprojection_error;
+  obs.pose = imagenets::marker::fromPoseMsg(detection->pose);
+  for (const auto& p : detection->points) obs.points.emplace_back(p.x, p.y);
+  return obs;
+}
+
+boost::shared_ptr<const imagenets::FeedbackTrace> CalibrationMarkerNet::lastTrace() const {
+  return executor_->output<imagenets::FeedbackTrace>("threshold.feedback_trace");
+}
+
+}  // namespace friend_calibration
