@@ -108,7 +108,7 @@ void drawNet(std::ostream& os, const Net& net, const std::string& prefix, bool e
       for (const FeedbackInitial& init : n.feedback->initial) {
         if (!init.fromPort()) continue;
         os << indent << prefix << "b" << net.findNode(init.block) << ":o_" << init.port << ":e -> " << id
-           << " [style=dotted, color=\"#555555\", label=\"initial " << escape(n.feedback->property) << "\"];\n";
+           << " [style=dotted, color=\"#555555\", label=\"initial " << xmlEscape(n.feedback->property) << "\"];\n";
       }
     }
   }
