@@ -688,22 +688,15 @@ json DesignerSession::opSetYaml(int, const json& request) {
   return json::object();
 }
 
-json DesignerSession::opUndo(int, const json&) {
-  if (undo_.empty()) throw RequestError("nothing to undo");
-  NetDocument current = doc_;
-  install(undo_.back().doc);
-  undo_.pop_back();
-  redo_.push_back({std::move(current)});
-  changed();
-  return json::object();
-}
+json DesignerSession::opUndo(int, const json&) { return step(undo_, redo_, "undo"); }
+json DesignerSession::opRedo(int, const json&) { return step(redo_, undo_, "redo"); }
 
-json DesignerSession::opRedo(int, const json&) {
-  if (redo_.empty()) throw RequestError("nothing to redo");
+json DesignerSession::step(std::vector<Snapshot>& from, std::vector<Snapshot>& to, const std::string& what) {
+  if (from.empty()) throw RequestError("nothing to " + what);
   NetDocument current = doc_;
-  install(redo_.back().doc);
-  redo_.pop_back();
-  undo_.push_back({std::move(current)});
+  install(from.back().doc);
+  from.pop_back();
+  to.push_back({std::move(current)});
   changed();
   return json::object();
 }
