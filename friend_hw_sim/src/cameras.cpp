@@ -15,6 +15,11 @@
 #include "imagenets/blocks/read_camera_info.h"
 
 namespace friend_hw_sim {
+
+using robot_description::defaultRobotDescriptionPath;
+using robot_description::fromXyzRpy;
+using robot_description::RobotModel;
+
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "imagenets/xml_escape.h"
+
 namespace imagenets {
 
 BlockRegistry& BlockRegistry::instance() {
@@ -62,21 +64,6 @@ std::unique_ptr<Block> BlockRegistry::create(const std::string& type) const {
   return block;
 }
 
-namespace {
-std::string xmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-}  // namespace
 
 std::string BlockRegistry::pluginXml() const {
   const std::vector<std::string> installed = {"libimagenets_core.so", "libimagenets_blocks.so"};

@@ -4,6 +4,7 @@
 #include <std_msgs/Float64.h>
 
 #include "imagenets/executor.h"
+#include "imagenets/graph.h"
 #include "test_blocks.h"
 
 using namespace imagenets;
@@ -350,4 +351,13 @@ blocks:
 links: [c.value -> s.in, s.out -> p.x]
 )"),
       "block 's': feedback: initial 5000 for 'offset': value 5000 is out of range [-1000, 1000]");
+}
+
+TEST_F(FeedbackTest, TheGraphDrawsWhereTheInitialCandidateComesFrom) {
+  const std::string dot =
+      toDot(*Net::build(parseNetText(initialNet("{property: value, from: 0, to: 9, score: score.score, "
+                                                "initial: guess.value}", 1, 1), "fb.yaml", "")));
+  // guess is b0, x is b1: a dotted edge from guess's output to the tuned block.
+  EXPECT_NE(dot.find("b0:o_value:e -> b1 [style=dotted, color=\"#555555\", label=\"initial value\"]"), std::string::npos)
+      << dot;
 }

@@ -10,13 +10,13 @@
 #include <sensor_msgs/JointState.h>
 #include <tf2_eigen/tf2_eigen.h>
 
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 
 namespace {
 
 TEST(FriendSimFig31, HeadLooksAtTheTcpAfterTheArmMoved) {
-  const friend_hw_sim::RobotModel nominal(
-      friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
+  const robot_description::RobotModel nominal(
+      robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
   const auto& d = nominal.description();
   const std::vector<double> arm_target{-35, 63, 83, 79, -22, 74, 0};
   std::vector<double> arm_rad;
