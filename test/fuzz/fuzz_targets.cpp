@@ -9,7 +9,7 @@
 
 #include "../../imagenets_core/src/nodelet/param_text.h"
 #include "friend_calibration/storage.h"
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 #include "imagenets/blocks/marker.h"
 #include "imagenets/executor.h"
 #include "imagenets/net.h"
@@ -77,7 +77,7 @@ const std::vector<Target>& targets() {
       {"marker", "config/markers/*.yaml",
        [](const std::string&, const std::string& file) { marker::MarkerDescription::load(file); }},
       {"robot_description", "config/friend/robot.yaml",
-       [](const std::string&, const std::string& file) { friend_hw_sim::loadRobotDescription(file); }},
+       [](const std::string&, const std::string& file) { robot_description::loadRobotDescription(file); }},
       {"calibration_file", "test/fuzz/seeds/calibration_file/*",
        [](const std::string&, const std::string& file) { friend_calibration::loadCalibration(file); }},
   };
