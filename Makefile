@@ -17,7 +17,7 @@ CMAKE_FLAGS = -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin
               -DCATKIN_DEVEL_PREFIX=$(abspath $(DEVEL))
 OUT ?= out/demo
 
-.PHONY: deps configure build tests test demo bench clean
+.PHONY: deps configure build tests test demo bench fuzz clean
 
 deps:
 	@scripts/install-deps
@@ -42,6 +42,10 @@ demo: build
 bench: build
 	cmake --build $(BUILD) --target benchmarks -j$(JOBS)
 	scripts/run-benchmarks $(DEVEL)
+
+# libFuzzer targets for every parser of outside input, FUZZ_SECONDS (60) each; clang build in build/fuzz.
+fuzz: deps
+	scripts/fuzz
 
 clean:
 	rm -rf $(BUILD) $(DEVEL) out

@@ -8,12 +8,14 @@
 
 #include <camera_calibration_parsers/parse.h>
 
+#include "friend_hw_sim/true_robot.h"
 #include "friend_hw_sim/cameras.h"
 #include "imagenets/blocks/marker.h"
 #include "friend_hw_sim/joint_trajectory.h"
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 
 using namespace friend_hw_sim;
+using namespace robot_description;
 namespace render = imagenets::render;
 using Clock = std::chrono::steady_clock;
 

@@ -6,12 +6,13 @@
 // ~right_camera_info (camera_calibration_parsers YAML/INI), ~rate (Hz, default 2), ~frame_id
 // (default left_camera_optical). Both sides carry the left optical frame, as ROS stereo drivers do:
 // the right model's P holds the baseline relative to it (image_geometry requires one frame).
-#include <camera_calibration_parsers/parse.h>
 #include <cv_bridge/cv_bridge.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
+
+#include "imagenets/blocks/read_camera_info.h"
 #include <sensor_msgs/Image.h>
 
 namespace {
@@ -32,10 +33,10 @@ bool load(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::string& side, Si
     ROS_FATAL("parameter ~%s_image: cannot read image '%s'", side.c_str(), image_path.c_str());
     return false;
   }
-  std::string camera_name;
-  out.info.reset(new sensor_msgs::CameraInfo);
-  if (!camera_calibration_parsers::readCalibration(info_path, camera_name, *out.info)) {
-    ROS_FATAL("parameter ~%s_camera_info: cannot read a camera model from '%s'", side.c_str(), info_path.c_str());
+  try {
+    out.info.reset(new sensor_msgs::CameraInfo(imagenets::blocks::readCameraInfo(info_path)));
+  } catch (const std::exception& e) {
+    ROS_FATAL("parameter ~%s_camera_info: %s", side.c_str(), e.what());
     return false;
   }
   if (out.info->width != static_cast<unsigned>(image.cols) || out.info->height != static_cast<unsigned>(image.rows)) {

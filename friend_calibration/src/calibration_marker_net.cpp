@@ -5,14 +5,14 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <imagenets/MarkerDetection.h>
 
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 #include "imagenets/blocks/marker_msgs.h"
 #include "imagenets/executor.h"
 
 namespace friend_calibration {
 
 std::string CalibrationMarkerNet::defaultNetPath() {
-  const std::string desc = friend_hw_sim::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
+  const std::string desc = robot_description::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
   return desc.substr(0, desc.size() - std::string("friend/robot.yaml").size()) + "nets/calibration_marker_detection.yaml";
 }
 

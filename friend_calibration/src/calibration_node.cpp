@@ -16,6 +16,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "imagenets/blocks/frames.h"
+#include "robot_description/joint_state.h"
 
 namespace friend_calibration {
 namespace {
@@ -23,7 +24,7 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 std::string packageFile(const std::string& rel) {
-  const std::string desc = friend_hw_sim::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
+  const std::string desc = robot_description::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
   return desc.substr(0, desc.size() - std::string("config/friend/robot.yaml").size()) + rel;
 }
 
@@ -32,19 +33,6 @@ std::string defaultCalibrationFile() {
   const char* home = std::getenv("HOME");
   const std::string dir = ros_home ? ros_home : std::string(home ? home : "/tmp") + "/.ros";
   return dir + "/friend_calibration/pth_fixed_point.yaml";
-}
-
-std::vector<double> pick(const sensor_msgs::JointState& js, const std::vector<std::string>& names) {
-  std::vector<double> q;
-  for (const auto& n : names) {
-    size_t i = 0;
-    while (i < js.name.size() && js.name[i] != n) ++i;
-    if (i >= js.name.size() || i >= js.position.size()) {
-      throw std::runtime_error("joint_states has no position for joint '" + n + "'");
-    }
-    q.push_back(js.position[i]);
-  }
-  return q;
 }
 
 template <class Out>
@@ -106,8 +94,8 @@ To sameMessage(const From& from) {
 CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
-      model_(friend_hw_sim::loadRobotDescription(
-          pnh.param<std::string>("description", friend_hw_sim::defaultRobotDescriptionPath()))),
+      model_(robot_description::loadRobotDescription(
+          pnh.param<std::string>("description", robot_description::defaultRobotDescriptionPath()))),
       marker_(imagenets::marker::MarkerDescription::load(
           pnh.param<std::string>("marker", packageFile("config/markers/gripper.yaml")))) {
   calibration_file_ = pnh_.param<std::string>("calibration_file", defaultCalibrationFile());
@@ -200,7 +188,7 @@ void CalibrationNode::onJointStates(const sensor_msgs::JointStateConstPtr& msg) 
   // extrinsics at the current pan/tilt are one TF lookup away.
   std::vector<double> head;
   try {
-    head = pick(*msg, model_.description().head.names());
+    head = robot_description::jointPositions(*msg, model_.description().head.names());
   } catch (const std::exception&) {
     return;
   }
@@ -410,8 +398,8 @@ sensor_msgs::JointStateConstPtr CalibrationNode::waitForJointStates(const ros::T
 Sample CalibrationNode::measure(const StereoPair& pair, const sensor_msgs::JointState& joints) const {
   const auto& d = model_.description();
   Sample s;
-  s.arm_q = pick(joints, d.arm.names());
-  s.head_q = pick(joints, d.head.names());
+  s.arm_q = robot_description::jointPositions(joints, d.arm.names());
+  s.head_q = robot_description::jointPositions(joints, d.head.names());
   s.stamp = pair.left->header.stamp.toSec();
   // Where the nominal model expects the marker: region of interest and pose-ambiguity hint.
   const Eigen::Isometry3d marker = model_.marker(s.arm_q);

@@ -17,7 +17,7 @@ namespace {
 
 void emitFrame(YAML::Emitter& out, const Eigen::Isometry3d& t) {
   const Eigen::Quaterniond q(t.rotation());
-  const Eigen::Vector3d rpy = friend_hw_sim::rpyOf(t.rotation()) * 180.0 / M_PI;
+  const Eigen::Vector3d rpy = robot_description::rpyOf(t.rotation()) * 180.0 / M_PI;
   out << YAML::Flow << YAML::BeginMap;
   out << YAML::Key << "xyz" << YAML::Value << YAML::Flow << YAML::BeginSeq << t.translation().x()
       << t.translation().y() << t.translation().z() << YAML::EndSeq;

@@ -9,11 +9,11 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 Eigen::Isometry3d xyzRpy(double x, double y, double z, double r, double p, double yaw) {
-  return friend_hw_sim::fromXyzRpy(Eigen::Vector3d(x, y, z), Eigen::Vector3d(r, p, yaw));
+  return robot_description::fromXyzRpy(Eigen::Vector3d(x, y, z), Eigen::Vector3d(r, p, yaw));
 }
 
 struct Fixture : ::testing::Test {
-  RobotModel model{friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath())};
+  RobotModel model{robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath())};
   // The true fixed point: nominal head mount off by ~15 mm / 2 deg.
   Eigen::Isometry3d truth = model.headBase() * xyzRpy(0.009, -0.008, 0.009, 1.0 * kDeg, -1.2 * kDeg, 1.2 * kDeg);
 

@@ -6,16 +6,17 @@
 
 #include "friend_calibration/calibration.h"
 #include "friend_hw_sim/cameras.h"
-#include "friend_hw_sim/robot_model.h"
+#include "friend_hw_sim/true_robot.h"
+#include "robot_description/robot_model.h"
 
 namespace friend_calibration {
 
 namespace render = imagenets::render;
 
 CalibrationViews renderCalibrationViews() {
-  const std::string desc_path = friend_hw_sim::defaultRobotDescriptionPath();
+  const std::string desc_path = robot_description::defaultRobotDescriptionPath();
   const std::string root = desc_path.substr(0, desc_path.size() - std::string("config/friend/robot.yaml").size());
-  const auto nominal_desc = friend_hw_sim::loadRobotDescription(desc_path);
+  const auto nominal_desc = robot_description::loadRobotDescription(desc_path);
   const RobotModel nominal(nominal_desc);
   const RobotModel truth(friend_hw_sim::applyTrueError(
       nominal_desc, friend_hw_sim::loadTrueError(root + "config/friend/true_error.yaml")));

@@ -13,7 +13,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct StorageTest : ::testing::Test {
-  RobotModel model{friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath())};
+  RobotModel model{robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath())};
   fs::path dir = fs::temp_directory_path() / ("calib_storage_" + std::to_string(::getpid()));
   void SetUp() override { fs::create_directories(dir); }
   void TearDown() override { fs::remove_all(dir); }

@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include <boost/make_shared.hpp>
-#include <camera_calibration_parsers/parse.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/Image.h>
@@ -13,8 +12,14 @@
 #include "friend_hw_sim/friend_sim.h"
 #include "imagenets/blocks/frames.h"
 #include "imagenets/blocks/marker.h"
+#include "imagenets/blocks/read_camera_info.h"
 
 namespace friend_hw_sim {
+
+using robot_description::defaultRobotDescriptionPath;
+using robot_description::fromXyzRpy;
+using robot_description::RobotModel;
+
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -206,9 +211,10 @@ CameraSim::Camera CameraSim::makeCamera(ros::NodeHandle nh, const std::string& n
   Camera c;
   c.name = name;
   c.frame = frame;
-  std::string camera_name;
-  if (!camera_calibration_parsers::readCalibration(info_file, camera_name, c.info)) {
-    throw std::runtime_error("camera '" + name + "': cannot read camera_info file '" + info_file + "'");
+  try {
+    c.info = imagenets::blocks::readCameraInfo(info_file);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("camera '" + name + "': " + e.what());
   }
   c.info.header.frame_id = frame;
   c.renderer = std::make_unique<render::Renderer>(render::CameraModel::fromCameraInfo(c.info), supersampling);

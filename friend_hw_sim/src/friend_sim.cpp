@@ -5,9 +5,14 @@
 #include <sensor_msgs/JointState.h>
 
 #include "friend_hw_sim/cameras.h"
+#include "friend_hw_sim/true_robot.h"
 #include "imagenets/blocks/frames.h"
 
 namespace friend_hw_sim {
+
+using robot_description::defaultRobotDescriptionPath;
+using robot_description::loadRobotDescription;
+
 namespace {
 
 std::string packagePath(const std::string& rel) {

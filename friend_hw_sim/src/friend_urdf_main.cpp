@@ -5,11 +5,12 @@
 #include <iostream>
 #include <string>
 
-#include "friend_hw_sim/robot_model.h"
-#include "friend_hw_sim/urdf_generator.h"
+#include "friend_hw_sim/true_robot.h"
+#include "robot_description/robot_model.h"
+#include "robot_description/urdf_generator.h"
 
 int main(int argc, char** argv) {
-  std::string description = friend_hw_sim::defaultRobotDescriptionPath(), error_file, name = "friend";
+  std::string description = robot_description::defaultRobotDescriptionPath(), error_file, name = "friend";
   int seed = -1;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -29,9 +30,9 @@ int main(int argc, char** argv) {
       } else if (a.rfind("__", 0) == 0) continue;  // roslaunch remapping arguments
       else throw std::runtime_error("unknown argument '" + a + "' (see --help)");
     }
-    auto robot = friend_hw_sim::loadRobotDescription(description);
+    auto robot = robot_description::loadRobotDescription(description);
     if (!error_file.empty()) robot = friend_hw_sim::applyTrueError(robot, friend_hw_sim::loadTrueError(error_file, seed));
-    std::cout << friend_hw_sim::generateUrdf(robot, name);
+    std::cout << robot_description::generateUrdf(robot, name);
   } catch (const std::exception& e) {
     std::cerr << "friend_urdf: " << e.what() << "\n";
     return 1;

@@ -8,10 +8,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "friend_hw_sim/cameras.h"
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 #include "imagenets/blocks/marker.h"
 
 using namespace friend_hw_sim;
+using namespace robot_description;
 namespace render = imagenets::render;
 
 namespace {

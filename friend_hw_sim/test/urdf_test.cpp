@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 #include <urdf/model.h>
 
-#include "friend_hw_sim/robot_model.h"
-#include "friend_hw_sim/urdf_generator.h"
+#include "robot_description/robot_model.h"
+#include "friend_hw_sim/true_robot.h"
+#include "robot_description/urdf_generator.h"
 
 using namespace friend_hw_sim;
+using namespace robot_description;
 
 namespace {
 

@@ -1,7 +1,7 @@
-#include <camera_calibration_parsers/parse.h>
 #include <sensor_msgs/CameraInfo.h>
 
 #include "imagenets/block.h"
+#include "imagenets/blocks/read_camera_info.h"
 #include "imagenets/register_block.h"
 #include "imagenets/time.h"
 
@@ -21,10 +21,11 @@ class CameraInfoFile : public Block {
   void process(Context& ctx) override {
     const auto path = ctx.property<std::string>("path");
     if (path.empty()) throw BlockError("property 'path' is empty");
-    std::string camera_name;
-    sensor_msgs::CameraInfo::Ptr info(new sensor_msgs::CameraInfo);
-    if (!camera_calibration_parsers::readCalibration(path, camera_name, *info)) {
-      throw BlockError("property 'path': cannot read a camera model from '" + path + "'");
+    sensor_msgs::CameraInfo::Ptr info;
+    try {
+      info.reset(new sensor_msgs::CameraInfo(readCameraInfo(path)));
+    } catch (const std::runtime_error& e) {
+      throw BlockError(std::string("property 'path': ") + e.what());
     }
     if (info->width == 0 || info->height == 0) throw BlockError("'" + path + "': image size is 0");
     if (info->K[0] <= 0 || info->K[4] <= 0) throw BlockError("'" + path + "': focal length in K is not positive");

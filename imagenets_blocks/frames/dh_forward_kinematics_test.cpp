@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 #include <sensor_msgs/JointState.h>
 
+#include <algorithm>
+
 #include "frame_test_util.h"
+#include "robot_description/robot_model.h"
 
 using namespace imagenets::blocks;
 using namespace imagenets::blocks::test;
@@ -57,14 +60,57 @@ TEST(DhForwardKinematics, ToolOffsetAlongLastLinkX) {
 TEST(DhForwardKinematics, BadInputsAreNamedErrors) {
   BlockHarness h("imagenets/DhForwardKinematics");
   h.input("joints", joints({}, {0.1, 0.2, 0.3}));
-  EXPECT_NE(h.runError().find("property 'dh_table': DH table has 0 values"), std::string::npos) << h.runError();
+  EXPECT_NE(h.runError().find("property 'dh_table': a DH table needs 4 values per joint"), std::string::npos)
+      << h.runError();
   h.set("dh_table", kArm);
   h.input("joints", joints({}, {0.1, 0.2}));
   EXPECT_NE(h.runError().find("2 positions, the DH table has 3 joints"), std::string::npos) << h.runError();
   h.input("joints", joints({}, {0.1, std::nan(""), 0.3}));
-  EXPECT_NE(h.runError().find("joint 2 value is nan"), std::string::npos) << h.runError();
+  EXPECT_NE(h.runError().find("input 'joints': forward kinematics of 'link_*': joint 'joint_2' position is not finite"),
+            std::string::npos)
+      << h.runError();
   h.set("joint_names", "j1,j2,j9");
   h.input("joints", joints({"j1", "j2", "j3"}, {0.1, 0.2, 0.3}));
-  EXPECT_NE(h.runError().find("no joint named 'j9'"), std::string::npos) << h.runError();
+  EXPECT_NE(h.runError().find("input 'joints': joint 'j9' is missing"), std::string::npos) << h.runError();
   EXPECT_FALSE(h.hasOutput("frame"));
+}
+
+TEST(DhForwardKinematics, ReadsTheChainsFromTheRobotDescription) {
+  // The description's arm to the marker and head to the left camera equal the robot model's.
+  const auto d = robot_description::loadRobotDescription("config/friend/robot.yaml");
+  const robot_description::RobotModel model(d);
+  BlockHarness arm("imagenets/DhForwardKinematics");
+  arm.set("chain", std::string("arm")).set("description", std::string("config/friend/robot.yaml"))
+      .set("tip", std::string("marker"));
+  // Joint states by name, in reverse order: the description's names pick them.
+  std::vector<std::string> names = d.arm.names();
+  std::vector<double> q = d.arm_calibration_pose;
+  std::reverse(names.begin(), names.end());
+  std::reverse(q.begin(), q.end());
+  arm.input("joints", joints(names, q));
+  arm.run();
+  const auto marker = arm.output<geometry_msgs::TransformStamped>("frame");
+  ASSERT_TRUE(marker);
+  const Eigen::Vector3d expected = model.marker(d.arm_calibration_pose).translation();
+  EXPECT_NEAR(marker->transform.translation.x, expected.x(), 1e-12);
+  EXPECT_NEAR(marker->transform.translation.y, expected.y(), 1e-12);
+  EXPECT_NEAR(marker->transform.translation.z, expected.z(), 1e-12);
+
+  BlockHarness head("imagenets/DhForwardKinematics");
+  head.set("chain", std::string("head")).set("tip", std::string("right_camera")).set("from", std::string("link_0"));
+  head.input("joints", joints(d.head.names(), d.head_calibration_pose));
+  head.run();
+  const auto camera = head.output<geometry_msgs::TransformStamped>("frame");
+  ASSERT_TRUE(camera);
+  const Eigen::Vector3d cam = (d.head.mount.inverse() * model.rightCamera(d.head_calibration_pose)).translation();
+  EXPECT_NEAR(camera->transform.translation.x, cam.x(), 1e-12);
+  EXPECT_NEAR(camera->transform.translation.z, cam.z(), 1e-12);
+
+  head.set("tip", std::string("marker"));
+  EXPECT_NE(head.runError().find("property 'tip': 'marker' is not on the head chain"), std::string::npos)
+      << head.runError();
+  head.set("tip", std::string("last_link")).set("description", std::string("/nonexistent/robot.yaml"));
+  EXPECT_NE(head.runError().find("property 'description': robot description '/nonexistent/robot.yaml'"),
+            std::string::npos)
+      << head.runError();
 }

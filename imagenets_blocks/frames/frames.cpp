@@ -170,60 +170,6 @@ Eigen::Vector3d medianTranslation(const std::vector<Eigen::Vector3d>& translatio
   return result;
 }
 
-std::vector<DhRow> parseDhTable(const std::vector<double>& flat) {
-  if (flat.empty() || flat.size() % 4 != 0) {
-    throw FrameError("DH table has " + std::to_string(flat.size()) +
-                     " values; expected rows of 4 (d, theta, a, alpha) per joint");
-  }
-  std::vector<DhRow> rows(flat.size() / 4);
-  for (size_t i = 0; i < flat.size(); ++i) {
-    if (!std::isfinite(flat[i])) {
-      throw FrameError("DH table row " + std::to_string(i / 4 + 1) + " value " + std::to_string(i % 4 + 1) +
-                       " is " + num(flat[i]));
-    }
-  }
-  for (size_t r = 0; r < rows.size(); ++r) {
-    rows[r].d = flat[4 * r];
-    rows[r].theta = flat[4 * r + 1];
-    rows[r].a = flat[4 * r + 2];
-    rows[r].alpha = flat[4 * r + 3];
-  }
-  return rows;
-}
-
-Eigen::Isometry3d dhTransform(const DhRow& row, double joint_value) {
-  const double theta = row.prismatic ? row.theta : row.theta + joint_value;
-  const double d = row.prismatic ? row.d + joint_value : row.d;
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.rotate(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()));
-  t.translate(Eigen::Vector3d(row.a, 0, d));  // Trans_z(d) and Trans_x(a) commute
-  t.rotate(Eigen::AngleAxisd(row.alpha, Eigen::Vector3d::UnitX()));
-  return t;
-}
-
-std::vector<Eigen::Isometry3d> forwardKinematicsChain(const std::vector<DhRow>& table,
-                                                      const std::vector<double>& joints) {
-  if (table.size() != joints.size()) {
-    throw FrameError("forward kinematics: " + std::to_string(joints.size()) + " joint values for a DH table of " +
-                     std::to_string(table.size()) + " joints");
-  }
-  std::vector<Eigen::Isometry3d> chain;
-  chain.reserve(table.size());
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  for (size_t i = 0; i < table.size(); ++i) {
-    if (!std::isfinite(joints[i])) {
-      throw FrameError("forward kinematics: joint " + std::to_string(i + 1) + " value is " + num(joints[i]));
-    }
-    t = t * dhTransform(table[i], joints[i]);
-    chain.push_back(t);
-  }
-  return chain;
-}
-
-Eigen::Isometry3d forwardKinematics(const std::vector<DhRow>& table, const std::vector<double>& joints) {
-  return forwardKinematicsChain(table, joints).back();
-}
-
 FusionResult fusePoses(const std::optional<Eigen::Isometry3d>& first, const std::optional<Eigen::Isometry3d>& second,
                        const FusionLimits& limits) {
   FusionResult r;

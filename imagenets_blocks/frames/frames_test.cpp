@@ -108,46 +108,6 @@ TEST(FrameMaths, PerAxisMedianResistsOutliers) {
   EXPECT_THROW(median({}), FrameError);
 }
 
-TEST(FrameMaths, DhOfPlanarTwoLinkArm) {
-  // Two revolute joints about z, links 1.0 and 0.5 along x: the textbook planar arm.
-  auto table = parseDhTable({0, 0, 1.0, 0, 0, 0, 0.5, 0});
-  const double q1 = 0.3, q2 = -1.1;
-  Eigen::Isometry3d tip = forwardKinematics(table, {q1, q2});
-  Eigen::Vector3d expected(std::cos(q1) + 0.5 * std::cos(q1 + q2), std::sin(q1) + 0.5 * std::sin(q1 + q2), 0);
-  EXPECT_NEAR((tip.translation() - expected).norm(), 0, 1e-12);
-  EXPECT_NEAR(rotationAngle(Eigen::Quaterniond(tip.rotation()), aboutAxis(q1 + q2, Eigen::Vector3d::UnitZ())), 0, 1e-9);
-}
-
-TEST(FrameMaths, DhOfAnthropomorphicArm) {
-  // Siciliano et al., "Robotics", 2.9.2: three-link anthropomorphic arm, DH rows
-  // (d, theta, a, alpha) = (0, q1, 0, pi/2), (0, q2, a2, 0), (0, q3, a3, 0); its tip position is
-  // p = (c1 (a2 c2 + a3 c23), s1 (a2 c2 + a3 c23), a2 s2 + a3 s23).
-  const double a2 = 0.4, a3 = 0.3;
-  auto table = parseDhTable({0, 0, 0, M_PI / 2, 0, 0, a2, 0, 0, 0, a3, 0});
-  const double q1 = 0.7, q2 = -0.4, q3 = 1.2;
-  auto chain = forwardKinematicsChain(table, {q1, q2, q3});
-  ASSERT_EQ(chain.size(), 3u);
-  const double r = a2 * std::cos(q2) + a3 * std::cos(q2 + q3);
-  Eigen::Vector3d expected(std::cos(q1) * r, std::sin(q1) * r, a2 * std::sin(q2) + a3 * std::sin(q2 + q3));
-  EXPECT_NEAR((chain[2].translation() - expected).norm(), 0, 1e-12);
-  // Frame 1 is at the base origin, its z axis horizontal: base x rotated by q1 about base z.
-  EXPECT_NEAR(chain[0].translation().norm(), 0, 1e-12);
-  EXPECT_NEAR((chain[0].linear().col(2) - Eigen::Vector3d(std::sin(q1), -std::cos(q1), 0)).norm(), 0, 1e-12);
-  // Offsets: theta offset of -q1 in row 1 is the same as joint 1 at 0.
-  auto offset = parseDhTable({0, -q1, 0, M_PI / 2, 0, 0, a2, 0, 0, 0, a3, 0});
-  Eigen::Isometry3d zero = forwardKinematics(table, {0, q2, q3});
-  EXPECT_NEAR((forwardKinematics(offset, {q1, q2, q3}).translation() - zero.translation()).norm(), 0, 1e-12);
-}
-
-TEST(FrameMaths, DhErrors) {
-  EXPECT_THROW(parseDhTable({0, 0, 1}), FrameError);
-  EXPECT_THROW(parseDhTable({}), FrameError);
-  EXPECT_THROW(parseDhTable({0, std::nan(""), 1, 0}), FrameError);
-  auto table = parseDhTable({0, 0, 1, 0});
-  EXPECT_THROW(forwardKinematics(table, {0, 0}), FrameError);
-  EXPECT_THROW(forwardKinematics(table, {std::nan("")}), FrameError);
-}
-
 TEST(FrameMaths, FusionRules) {
   const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
   const Eigen::Isometry3d a = pose({1.000, 0, 2}, aboutAxis(0.10, z));

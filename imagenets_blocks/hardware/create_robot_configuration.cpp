@@ -4,9 +4,8 @@
 #include <boost/make_shared.hpp>
 #include <sensor_msgs/JointState.h>
 
-#include "friend_hw_sim/robot_model.h"
+#include "imagenets/blocks/robot.h"
 #include "imagenets/register_block.h"
-#include "ros_access.h"
 
 namespace imagenets {
 namespace blocks {
@@ -23,7 +22,7 @@ class CreateRobotConfiguration : public Block {
   }
 
   void process(Context& ctx) override {
-    const auto& d = hardware::robotDescription(ctx.property<std::string>("description"));
+    const auto& d = robotDescription(ctx.property<std::string>("description"));
     const auto& chain = ctx.property<std::string>("group") == "arm" ? d.arm : d.head;
     const auto deg = ctx.property<std::vector<double>>("angles");
     std::vector<double> q;

@@ -8,9 +8,8 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <sensor_msgs/JointState.h>
 
-#include "friend_hw_sim/robot_model.h"
+#include "imagenets/blocks/robot.h"
 #include "imagenets/register_block.h"
-#include "ros_access.h"
 
 namespace imagenets {
 namespace blocks {
@@ -26,12 +25,12 @@ class LookAtTcp : public Block {
   }
 
   void process(Context& ctx) override {
-    const auto& d = hardware::robotDescription(ctx.property<std::string>("description"));
+    const auto& d = robotDescription(ctx.property<std::string>("description"));
     const auto arm = ctx.input<sensor_msgs::JointState>("arm_configuration");
-    const std::vector<double> q = hardware::positionsOf(*arm, d.arm.names(), "arm_configuration");
+    const std::vector<double> q = jointPositions(*arm, d.arm.names(), "arm_configuration");
     const auto offset = ctx.property<std::vector<double>>("offset");
     if (offset.size() != 3) throw BlockError("property 'offset': expected 3 numbers (x y z), got " + std::to_string(offset.size()));
-    const friend_hw_sim::RobotModel model(d);
+    const robot_description::RobotModel model(d);
     const Eigen::Vector3d target = model.tcp(q) * Eigen::Vector3d(offset[0], offset[1], offset[2]);
     const auto pt = model.lookAt(target, {0.0, 0.5});
 

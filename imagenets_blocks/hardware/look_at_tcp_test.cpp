@@ -4,14 +4,14 @@
 #include <gtest/gtest.h>
 #include <sensor_msgs/JointState.h>
 
-#include "friend_hw_sim/robot_model.h"
 #include "imagenets/blocks/block_harness.h"
+#include "robot_description/robot_model.h"
 
 using imagenets::blocks::BlockHarness;
 
 TEST(LookAtTcp, CentresTheTcpOnTheStereoAxisOfTheNominalRobot) {
   BlockHarness h("imagenets/LookAtTcp");
-  const auto d = friend_hw_sim::loadRobotDescription("config/friend/robot.yaml");
+  const auto d = robot_description::loadRobotDescription("config/friend/robot.yaml");
   auto arm = boost::make_shared<sensor_msgs::JointState>();
   arm->name = d.arm.names();
   arm->position = {-0.5, 1.0, 1.2, 1.3, -0.3, 1.2, 0.0};
@@ -19,7 +19,7 @@ TEST(LookAtTcp, CentresTheTcpOnTheStereoAxisOfTheNominalRobot) {
   const auto head = h.output<sensor_msgs::JointState>("head_configuration");
   ASSERT_TRUE(head);
   ASSERT_EQ(head->position.size(), 2u);
-  const friend_hw_sim::RobotModel model(d);
+  const robot_description::RobotModel model(d);
   Eigen::Isometry3d centre = model.leftCamera(head->position);
   centre.translate(Eigen::Vector3d(d.stereo_baseline / 2, 0, 0));
   const Eigen::Vector3d p = centre.inverse() * model.tcp(arm->position).translation();

@@ -8,7 +8,6 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
-#include "friend_hw_sim/robot_model.h"
 #include "imagenets/MoveJointsAction.h"
 #include "imagenets/calling_thread_queue.h"
 
@@ -60,22 +59,6 @@ sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_ms
   return reached;
 }
 
-const friend_hw_sim::RobotDescription& robotDescription(const std::string& path) {
-  static std::mutex mutex;
-  static std::map<std::string, friend_hw_sim::RobotDescription> cache;
-  const std::string file = path.empty() ? friend_hw_sim::defaultRobotDescriptionPath() : path;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto it = cache.find(file);
-  if (it == cache.end()) {
-    try {
-      it = cache.emplace(file, friend_hw_sim::loadRobotDescription(file)).first;
-    } catch (const std::exception& e) {
-      throw BlockError(std::string("property 'description': ") + e.what());
-    }
-  }
-  return it->second;
-}
-
 tf2_ros::Buffer& tfBuffer() {
   // Never destroyed: the listener's thread must not outlive ROS's shutdown order at exit.
   static tf2_ros::Buffer* buffer = [] {
@@ -108,21 +91,6 @@ geometry_msgs::TransformStamped lookupTransform(const tf2_ros::Buffer& buffer, c
   throw BlockError("no transform from '" + source + "' to '" + target + "' (properties source_frame, target_frame) at " +
                    (stamp.isZero() ? std::string("the latest time") : std::string("t = ") + when) + " within " +
                    std::to_string(timeout) + " s: " + (reason.empty() ? "not available" : reason) + known);
-}
-
-std::vector<double> positionsOf(const sensor_msgs::JointState& state, const std::vector<std::string>& names,
-                                const std::string& port) {
-  if (state.name.size() != state.position.size()) {
-    throw BlockError("input '" + port + "': " + std::to_string(state.name.size()) + " names but " +
-                     std::to_string(state.position.size()) + " positions");
-  }
-  std::vector<double> q;
-  for (const auto& n : names) {
-    const auto it = std::find(state.name.begin(), state.name.end(), n);
-    if (it == state.name.end()) throw BlockError("input '" + port + "': joint '" + n + "' is missing");
-    q.push_back(state.position[it - state.name.begin()]);
-  }
-  return q;
 }
 
 }  // namespace hardware

@@ -11,9 +11,6 @@
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 
-namespace friend_hw_sim {
-struct RobotDescription;
-}
 namespace tf2_ros {
 class Buffer;
 }
@@ -35,9 +32,6 @@ boost::shared_ptr<const M> waitForMessage(const std::string& topic, double timeo
 sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_msgs::JointState& target,
                                       double speed_scale, double server_timeout, double motion_timeout);
 
-// The robot description named by a block's `description` property ("" = the shipped one).
-const friend_hw_sim::RobotDescription& robotDescription(const std::string& path);
-
 // The process's TF buffer, filled by one tf2_ros listener (own spin thread) started on first use;
 // call ensureRosNode() first. Shared so that every block sees the history since the first lookup.
 tf2_ros::Buffer& tfBuffer();
@@ -47,10 +41,6 @@ tf2_ros::Buffer& tfBuffer();
 // them is unknown).
 geometry_msgs::TransformStamped lookupTransform(const tf2_ros::Buffer& buffer, const std::string& target,
                                                 const std::string& source, const ros::Time& stamp, double timeout);
-
-// Positions of `names` in `state` (throws BlockError naming the missing joint and the port).
-std::vector<double> positionsOf(const sensor_msgs::JointState& state, const std::vector<std::string>& names,
-                                const std::string& port);
 
 }  // namespace hardware
 }  // namespace blocks

@@ -58,13 +58,18 @@ MarkerDescription MarkerDescription::load(const std::string& yaml_path) {
     }
     return v;
   };
-  m.name = root["name"] ? root["name"].as<std::string>() : boost::filesystem::path(yaml_path).stem().string();
+  auto text = [&](const char* key) {
+    const YAML::Node n = root[key];
+    if (!n.IsScalar()) throw std::runtime_error(yaml_path + ": '" + key + "' must be text");
+    return n.Scalar();
+  };
+  m.name = root["name"] ? text("name") : boost::filesystem::path(yaml_path).stem().string();
   m.size = number("size", 0.06, true, 0.0, 10.0);
   m.border = number("border", 0.25, false, 0.0, 0.5);
   m.margin = number("margin", 0.25, false, -1e-12, 10.0);
   if (!root["pattern"]) throw std::runtime_error(yaml_path + ": missing key 'pattern'");
   const boost::filesystem::path pattern_path =
-      boost::filesystem::absolute(yaml_path).parent_path() / root["pattern"].as<std::string>();
+      boost::filesystem::absolute(yaml_path).parent_path() / text("pattern");
   m.pattern = cv::imread(pattern_path.string(), cv::IMREAD_GRAYSCALE);
   if (m.pattern.empty()) {
     throw std::runtime_error(yaml_path + ": 'pattern': cannot read image " + pattern_path.string());

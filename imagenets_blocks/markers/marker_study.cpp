@@ -16,7 +16,6 @@
 
 #include <boost/make_shared.hpp>
 
-#include <camera_calibration_parsers/parse.h>
 #include <cv_bridge/cv_bridge.h>
 #include <opencv2/imgproc.hpp>
 
@@ -25,6 +24,7 @@
 #include "imagenets/blocks/marker_msgs.h"
 #include "imagenets/blocks/marker_net.h"
 #include "imagenets/blocks/marker_scene.h"
+#include "imagenets/blocks/read_camera_info.h"
 
 namespace imagenets {
 namespace marker {
@@ -59,11 +59,7 @@ double percentile(std::vector<double> v, double q) {
 
 std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<void(int, int)>& progress) {
   const MarkerDescription marker = MarkerDescription::load(config.marker);
-  auto info = boost::make_shared<sensor_msgs::CameraInfo>();
-  std::string camera_name;
-  if (!camera_calibration_parsers::readCalibration(config.camera, camera_name, *info)) {
-    throw std::runtime_error(config.camera + ": cannot read camera calibration file");
-  }
+  auto info = boost::make_shared<sensor_msgs::CameraInfo>(blocks::readCameraInfo(config.camera));
   info->header.frame_id = "camera_optical_frame";
   const render::CameraModel camera = render::CameraModel::fromCameraInfo(*info);
   const std::shared_ptr<const render::Renderer> renderer = sharedRenderer(camera, config.supersampling);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "imagenets/registry.h"
+#include "imagenets/xml_escape.h"
 
 namespace imagenets {
 
@@ -31,20 +32,6 @@ std::string typeColor(const std::string& type_name) {
   return out;
 }
 
-namespace {
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
-
-}  // namespace
 
 namespace {
 
@@ -57,24 +44,24 @@ void drawNet(std::ostream& os, const Net& net, const std::string& prefix, bool e
     const std::string id = prefix + "b" + std::to_string(i);
     const std::string type = b.info() ? b.info()->type : "?";
     os << indent << id << " [label=<<table border=\"1\" cellborder=\"0\" cellspacing=\"1\" bgcolor=\"#f7f7f7\">";
-    os << "<tr><td colspan=\"2\"><b>" << escape(n.name) << "</b></td></tr>";
-    os << "<tr><td colspan=\"2\"><font point-size=\"9\">" << escape(type) << "</font></td></tr>";
+    os << "<tr><td colspan=\"2\"><b>" << xmlEscape(n.name) << "</b></td></tr>";
+    os << "<tr><td colspan=\"2\"><font point-size=\"9\">" << xmlEscape(type) << "</font></td></tr>";
     const size_t rows = std::max(b.inputs().size(), b.outputs().size());
     for (size_t r = 0; r < rows; ++r) {
       os << "<tr>";
       if (r < b.inputs().size()) {
         const PortSpec& p = b.inputs()[r];
         types.insert(p.type->name);
-        os << "<td port=\"i_" << escape(p.name) << "\" align=\"left\" bgcolor=\"" << typeColor(p.type->name) << "\">"
-           << escape(p.name) << "</td>";
+        os << "<td port=\"i_" << xmlEscape(p.name) << "\" align=\"left\" bgcolor=\"" << typeColor(p.type->name) << "\">"
+           << xmlEscape(p.name) << "</td>";
       } else {
         os << "<td></td>";
       }
       if (r < b.outputs().size()) {
         const PortSpec& p = b.outputs()[r];
         types.insert(p.type->name);
-        os << "<td port=\"o_" << escape(p.name) << "\" align=\"right\" bgcolor=\"" << typeColor(p.type->name) << "\">"
-           << escape(p.name) << "</td>";
+        os << "<td port=\"o_" << xmlEscape(p.name) << "\" align=\"right\" bgcolor=\"" << typeColor(p.type->name) << "\">"
+           << xmlEscape(p.name) << "</td>";
       } else {
         os << "<td></td>";
       }
@@ -85,15 +72,15 @@ void drawNet(std::ostream& os, const Net& net, const std::string& prefix, bool e
       if (v == spec.defaultValue()) continue;
       std::string text = toString(v);
       if (text.size() > 48) text = "..." + text.substr(text.size() - 45);
-      os << "<tr><td colspan=\"2\" align=\"left\"><font point-size=\"8\">" << escape(spec.name()) << " = "
-         << escape(text) << "</font></td></tr>";
+      os << "<tr><td colspan=\"2\" align=\"left\"><font point-size=\"8\">" << xmlEscape(spec.name()) << " = "
+         << xmlEscape(text) << "</font></td></tr>";
     }
     os << "</table>>];\n";
     if (expand && b.subNet()) {
       const Net& inner = *b.subNet();
       const std::string inner_prefix = id + "_";
       os << indent << "subgraph cluster_" << id << " {\n"
-         << indent << "  label=\"" << escape(n.name) << ": " << escape(inner.origin()) << "\"; style=rounded; "
+         << indent << "  label=\"" << xmlEscape(n.name) << ": " << xmlEscape(inner.origin()) << "\"; style=rounded; "
          << "color=\"#888888\";\n";
       drawNet(os, inner, inner_prefix, expand, types, indent + "  ");
       os << indent << "}\n";
@@ -116,12 +103,12 @@ void drawNet(std::ostream& os, const Net& net, const std::string& prefix, bool e
     if (n.feedback) {
       const int score = net.findNode(n.feedback->score_block);
       os << indent << prefix << "b" << score << ":o_" << n.feedback->score_port << " -> " << id
-         << " [style=dashed, color=\"#555555\", constraint=false, label=\"feedback: " << escape(n.feedback->property)
+         << " [style=dashed, color=\"#555555\", constraint=false, label=\"feedback: " << xmlEscape(n.feedback->property)
          << " (" << (n.feedback->maximize ? "max" : "min") << ")\"];\n";
       for (const FeedbackInitial& init : n.feedback->initial) {
         if (!init.fromPort()) continue;
         os << indent << prefix << "b" << net.findNode(init.block) << ":o_" << init.port << ":e -> " << id
-           << " [style=dotted, color=\"#555555\", label=\"initial " << escape(n.feedback->property) << "\"];\n";
+           << " [style=dotted, color=\"#555555\", label=\"initial " << xmlEscape(n.feedback->property) << "\"];\n";
       }
     }
   }
@@ -134,12 +121,12 @@ std::string toDot(const Net& net, bool expand_sub_nets) {
   std::set<std::string> types;
   os << "digraph imagenet {\n  rankdir=LR; compound=true;\n  node [shape=plaintext, fontname=\"Helvetica\"];\n"
      << "  edge [fontname=\"Helvetica\", fontsize=9];\n";
-  os << "  label=\"" << escape(net.origin()) << "\"; labelloc=t;\n";
+  os << "  label=\"" << xmlEscape(net.origin()) << "\"; labelloc=t;\n";
   drawNet(os, net, "", expand_sub_nets, types, "  ");
   // Legend: one swatch per data type used.
   os << "  legend [label=<<table border=\"0\" cellspacing=\"2\"><tr><td><b>data types</b></td></tr>";
   for (const auto& t : types) {
-    os << "<tr><td bgcolor=\"" << typeColor(t) << "\">" << escape(t) << "</td></tr>";
+    os << "<tr><td bgcolor=\"" << typeColor(t) << "\">" << xmlEscape(t) << "</td></tr>";
   }
   os << "</table>>];\n}\n";
   return os.str();

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+
 namespace imagenets {
 
 BlockRegistry& BlockRegistry::instance() {

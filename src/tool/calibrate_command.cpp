@@ -5,7 +5,7 @@
 
 #include "calibration_client.h"
 #include "command.h"
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 
 namespace imagenets {
 namespace tool {
@@ -32,7 +32,7 @@ int calibrate(const Args& args) {
   std::printf("%s: %s\n", r.success ? "calibrated" : "FAILED", r.message.c_str());
   if (!r.success) return 1;
   const auto& t = r.fixed_point.transform.translation;
-  const Eigen::Vector3d rpy = friend_hw_sim::rpyOf(run.fixed_point.rotation()) * 180 / M_PI;
+  const Eigen::Vector3d rpy = robot_description::rpyOf(run.fixed_point.rotation()) * 180 / M_PI;
   std::printf("fixed point %s -> %s: xyz [%.4f %.4f %.4f] m, rpy [%.3f %.3f %.3f] deg\n",
               r.fixed_point.header.frame_id.c_str(), r.fixed_point.child_frame_id.c_str(), t.x, t.y, t.z, rpy.x(),
               rpy.y(), rpy.z());

@@ -9,6 +9,7 @@
 #include <sensor_msgs/JointState.h>
 
 #include "friend_calibration/calibration.h"
+#include "friend_hw_sim/true_robot.h"
 #include "imagenets/blocks/frames.h"
 
 namespace imagenets {
@@ -21,7 +22,7 @@ struct CalibrationClient::Impl {
   std::mutex m;
   geometry_msgs::TransformStampedConstPtr head_base, left;
   sensor_msgs::JointStateConstPtr joints;
-  std::unique_ptr<friend_hw_sim::RobotModel> nominal;
+  std::unique_ptr<robot_description::RobotModel> nominal;
 };
 
 CalibrationClient::CalibrationClient(const std::string& name, double timeout) : impl_(new Impl) {
@@ -45,8 +46,8 @@ CalibrationClient::CalibrationClient(const std::string& name, double timeout) : 
         std::lock_guard<std::mutex> l(p->m);
         p->joints = m;
       });
-  p->nominal = std::make_unique<friend_hw_sim::RobotModel>(
-      friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
+  p->nominal = std::make_unique<robot_description::RobotModel>(
+      robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
   if (!ros::service::waitForService("/friend_calibration/calibrate", ros::Duration(timeout))) {
     throw std::runtime_error("service /friend_calibration/calibrate is not available after " + std::to_string(timeout) +
                              " s (is friend_calibration_node running?)");

@@ -10,7 +10,6 @@
 
 #include <boost/filesystem.hpp>
 #include <boost/make_shared.hpp>
-#include <camera_calibration_parsers/parse.h>
 #include <cv_bridge/cv_bridge.h>
 #include <opencv2/imgcodecs.hpp>
 #include <ros/package.h>
@@ -18,6 +17,7 @@
 #include "command.h"
 #include "imagenets/blocks/marker.h"
 #include "imagenets/blocks/marker_net.h"
+#include "imagenets/blocks/read_camera_info.h"
 
 namespace imagenets {
 namespace tool {
@@ -80,10 +80,12 @@ int run(const Args& args) {
     std::cerr << "imagenets detect: --camera: no such file '" << camera_path << "'\n";
     return 1;
   }
-  auto info = boost::make_shared<sensor_msgs::CameraInfo>();
+  boost::shared_ptr<sensor_msgs::CameraInfo> info;
   std::string camera_name;
-  if (!camera_calibration_parsers::readCalibration(camera_path, camera_name, *info)) {
-    std::cerr << "imagenets detect: --camera: '" << camera_path << "' is not a camera calibration file\n";
+  try {
+    info = boost::make_shared<sensor_msgs::CameraInfo>(blocks::readCameraInfo(camera_path, &camera_name));
+  } catch (const std::exception& e) {
+    std::cerr << "imagenets detect: --camera: " << e.what() << "\n";
     return 1;
   }
   info->header.frame_id = camera_name.empty() ? "camera" : camera_name + "_optical_frame";

@@ -189,7 +189,7 @@ int repeatability(const Args& args) {
                      res.success ? "ok" : "FAILED", row.r.error_mm, row.r.error_deg);
         if (!res.success) std::fprintf(stderr, "\n  %s\n", res.message.c_str());
         const Eigen::Vector3d t = row.r.fixed_point.translation();
-        const Eigen::Vector3d rpy = friend_hw_sim::rpyOf(row.r.fixed_point.rotation()) * 180 / M_PI;
+        const Eigen::Vector3d rpy = robot_description::rpyOf(row.r.fixed_point.rotation()) * 180 / M_PI;
         char line[512];
         std::snprintf(line, sizeof line, "%s,%d,%d,%d,%.6f,%.6f,%.6f,%.5f,%.5f,%.5f,%.4f,%.5f,%.4f,%.5f,%d,%d,%.5f,%.4f,%.1f,",
                       method.c_str(), n, k, res.success ? 1 : 0, t.x(), t.y(), t.z(), rpy.x(), rpy.y(), rpy.z(),

@@ -249,8 +249,8 @@ TEST(BlockNodelets, BadParameterFailsTheLoadWithTheNamedError) {
     return false;
   };
   // Every node logs on /rosout (no rosout node needed): wait until the manager is connected.
-  ASSERT_TRUE(waitFor([&] { return log.getNumPublishers() > 0; }, 5.0));
-  ASSERT_TRUE(ros::service::waitForService("manager/load_nodelet", 5000));
+  ASSERT_TRUE(waitFor([&] { return log.getNumPublishers() > 0; }, 30.0));
+  ASSERT_TRUE(ros::service::waitForService("manager/load_nodelet", 30000));
 
   // Each failed load must log its named error. The manager's /rosout connection may come up
   // after our first attempt, so a failing load is retried until its message is seen.

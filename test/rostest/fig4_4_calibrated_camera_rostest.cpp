@@ -21,7 +21,7 @@
 
 #include "friend_calibration/calibration.h"
 #include "friend_hw_sim/cameras.h"
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/blocks/frames.h"
 #include "rostest_util.h"
@@ -84,7 +84,7 @@ TEST(Fig4_4CalibratedCamera, ExtrinsicsCloudAndDetectionImages) {
   EXPECT_EQ(model_info->header.frame_id, kCalibratedLeft);
   auto js = joints.waitFrom(ext->header.stamp, 5.0);
   ASSERT_TRUE(js);
-  const friend_hw_sim::RobotModel model(friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
+  const robot_description::RobotModel model(robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
   std::vector<double> head;
   for (const auto& name : model.description().head.names()) {
     const auto it = std::find(js->name.begin(), js->name.end(), name);
@@ -104,8 +104,8 @@ TEST(Fig4_4CalibratedCamera, ExtrinsicsCloudAndDetectionImages) {
   auto pc = cloud.waitFrom(ext->header.stamp, 20.0);
   ASSERT_TRUE(pc) << "no /fig4_4/points2 after the calibration";
   EXPECT_EQ(pc->header.frame_id, kCalibratedLeft);
-  const auto scene = friend_hw_sim::loadWorldScene(friend_hw_sim::defaultRobotDescriptionPath().substr(
-                                                       0, friend_hw_sim::defaultRobotDescriptionPath().rfind('/')) +
+  const auto scene = friend_hw_sim::loadWorldScene(robot_description::defaultRobotDescriptionPath().substr(
+                                                       0, robot_description::defaultRobotDescriptionPath().rfind('/')) +
                                                    "/scene.yaml");
   const friend_hw_sim::WorldPlane* table = nullptr;
   std::vector<const friend_hw_sim::WorldPlane*> boxes;

@@ -93,8 +93,8 @@ TEST_F(Fig4CalibrationNets, CombinedFixedPointIsNearTheTruth) {
   const Eigen::Isometry3d x = toEigen(result_->transform), t = toEigen(truth_->transform);
   const double mm = mmBetween(x, t), deg = degBetween(x, t);
   // The nominal fixed point is 15 mm / 2 deg off the truth: the net must have moved towards it.
-  const friend_hw_sim::RobotModel nominal(
-      friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
+  const robot_description::RobotModel nominal(
+      robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
   std::printf("Fig. 4.3 net (3 loops): error vs true fixed point %.3f mm / %.4f deg (nominal model: %.1f mm / %.2f deg)\n",
               mm, deg, mmBetween(nominal.headBase(), t), degBetween(nominal.headBase(), t));
   EXPECT_LT(mm, 10.0);
@@ -111,8 +111,8 @@ TEST_F(Fig4CalibrationNets, SameMeasurementsGiveTheCppImplementationsFrames) {
   ASSERT_TRUE(fixed_points_ && left_ && right_ && arm_ && head_);
   ASSERT_EQ(left_->poses.size(), fixed_points_->poses.size());
   ASSERT_EQ(right_->poses.size(), fixed_points_->poses.size());
-  const friend_hw_sim::RobotModel model(
-      friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
+  const robot_description::RobotModel model(
+      robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
   const auto& d = model.description();
   // The joint angles of the last loop; every loop commands the same pose and the simulator's
   // encoders are noise-free here, so they are every loop's angles.

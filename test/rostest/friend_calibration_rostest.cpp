@@ -15,6 +15,7 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include "friend_hw_sim/true_robot.h"
 #include "friend_calibration/calibration.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"

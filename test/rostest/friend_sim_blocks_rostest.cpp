@@ -34,7 +34,7 @@ std::unique_ptr<Executor> netFromText(const std::string& yaml) {
 
 template <class M>
 boost::shared_ptr<const M> nextMessage(const std::string& topic) {
-  return ros::topic::waitForMessage<M>(topic, ros::Duration(5));
+  return ros::topic::waitForMessage<M>(topic, ros::Duration(30));
 }
 
 std::string failures(const RunReport& r) {

@@ -18,7 +18,7 @@
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/transform_listener.h>
 
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 #include "imagenets/blocks/marker.h"
 #include "imagenets/MoveJointsAction.h"
 #include "imagenets/calling_thread_queue.h"
@@ -39,7 +39,7 @@ class FriendSimCameras : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     // Calibration pose of the description: the marker faces the stereo camera.
-    const auto d = friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath());
+    const auto d = robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath());
     imagenets::CallingThreadQueue clients;  // called back only in its waitUntil (it says why)
     Client arm(clients.nodeHandle(), "arm/move_joints", false), head(clients.nodeHandle(), "head/move_joints", false);
     ASSERT_TRUE(clients.waitUntil([&] { return arm.isServerConnected() && head.isServerConnected(); }, 15));
@@ -138,8 +138,8 @@ TEST_F(FriendSimCameras, GroundTruthAgreesWithTheTrueRobotTf) {
     EXPECT_LT(Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle(), 1e-6) << gt->child_frame_id;
   }
   // And the truth is not the nominal robot: the head is mounted off by about 15 mm.
-  const auto nominal = friend_hw_sim::RobotModel(
-      friend_hw_sim::loadRobotDescription(friend_hw_sim::defaultRobotDescriptionPath()));
+  const auto nominal = robot_description::RobotModel(
+      robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
   const auto tf = buffer.lookupTransform("base_link", "head_link_0", ros::Time(0));
   EXPECT_NEAR((toEigen(tf).translation() - nominal.headBase().translation()).norm(), 0.015, 0.002);
 }

@@ -502,9 +502,17 @@ json DesignerSession::opRemoveBlocks(int, const json& request) {
   links.erase(std::remove_if(links.begin(), links.end(),
                              [&](const LinkSpec& l) { return gone.count(l.from_block) || gone.count(l.to_block); }),
               links.end());
-  // A feedback scored by a removed block goes with it, like the links.
+  // A feedback scored by a removed block goes with it, like the links; so do initial values
+  // read from a removed block's port.
   for (auto& b : blocks) {
-    if (b.feedback && gone.count(b.feedback->score_block)) b.feedback.reset();
+    if (!b.feedback) continue;
+    if (gone.count(b.feedback->score_block)) {
+      b.feedback.reset();
+      continue;
+    }
+    auto& initial = b.feedback->initial;
+    initial.erase(std::remove_if(initial.begin(), initial.end(), [&](const FeedbackInitial& i) { return gone.count(i.block) > 0; }),
+                  initial.end());
   }
   for (const auto& n : gone) next.positions.erase(n);
   apply(std::move(next));
@@ -587,7 +595,11 @@ json DesignerSession::opRenameBlock(int, const json& request) {
     if (l.to_block == from) l.to_block = to;
   }
   for (auto& b : next.spec.blocks) {
-    if (b.feedback && b.feedback->score_block == from) b.feedback->score_block = to;
+    if (!b.feedback) continue;
+    if (b.feedback->score_block == from) b.feedback->score_block = to;
+    for (auto& initial : b.feedback->initial) {
+      if (initial.block == from) initial.block = to;
+    }
   }
   auto pos = next.positions.find(from);
   if (pos != next.positions.end()) {
@@ -623,9 +635,20 @@ json DesignerSession::opPaste(int, const json& request) {
     }
     if (item.contains("feedback") && !item["feedback"].is_null()) {
       json fb = item["feedback"];
-      if (fb.contains("score") && fb["score"].is_string()) {
-        auto [sb, sp] = splitEndpoint(fb["score"].get<std::string>(), "feedback score");
-        if (names.count(sb)) fb["score"] = names[sb] + "." + sp;
+      // Block names inside the feedback (the score, initial values from ports) follow the paste.
+      auto rename = [&](json& endpoint) {
+        if (!endpoint.is_string()) return;
+        const std::string text = endpoint.get<std::string>();
+        const auto dot = text.find('.');
+        if (dot != std::string::npos && names.count(text.substr(0, dot))) endpoint = names[text.substr(0, dot)] + text.substr(dot);
+      };
+      if (fb.contains("score")) rename(fb["score"]);
+      if (fb.contains("initial")) {
+        if (fb["initial"].is_array()) {
+          for (auto& i : fb["initial"]) rename(i);
+        } else {
+          rename(fb["initial"]);
+        }
       }
       b.feedback = parseFeedback(b, fb, next.spec);
     }
@@ -662,22 +685,15 @@ json DesignerSession::opSetYaml(int, const json& request) {
   return json::object();
 }
 
-json DesignerSession::opUndo(int, const json&) {
-  if (undo_.empty()) throw RequestError("nothing to undo");
-  NetDocument current = doc_;
-  install(undo_.back().doc);
-  undo_.pop_back();
-  redo_.push_back({std::move(current)});
-  changed();
-  return json::object();
-}
+json DesignerSession::opUndo(int, const json&) { return step(undo_, redo_, "undo"); }
+json DesignerSession::opRedo(int, const json&) { return step(redo_, undo_, "redo"); }
 
-json DesignerSession::opRedo(int, const json&) {
-  if (redo_.empty()) throw RequestError("nothing to redo");
+json DesignerSession::step(std::vector<Snapshot>& from, std::vector<Snapshot>& to, const std::string& what) {
+  if (from.empty()) throw RequestError("nothing to " + what);
   NetDocument current = doc_;
-  install(redo_.back().doc);
-  redo_.pop_back();
-  undo_.push_back({std::move(current)});
+  install(from.back().doc);
+  from.pop_back();
+  to.push_back({std::move(current)});
   changed();
   return json::object();
 }

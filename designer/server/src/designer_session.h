@@ -111,6 +111,8 @@ class DesignerSession {
   void install(NetDocument next);
   // install() as one undo step, and the new state to every tab. Consecutive edits with the same
   // non-empty `merge` key (one property dragged along a slider) are one step.
+  // Undo (from = undo_, to = redo_) or redo: the top state of `from` becomes the net.
+  nlohmann::json step(std::vector<Snapshot>& from, std::vector<Snapshot>& to, const std::string& what);
   // `notify` false: the caller pushes the state later (after an automatic run).
   void apply(NetDocument next, const std::string& merge = "", bool notify = true);
   void rebuild(const NetDocument& doc);

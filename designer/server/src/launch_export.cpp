@@ -6,23 +6,19 @@
 #include <ros/package.h>
 
 #include "imagenets/registry.h"
+#include "imagenets/xml_escape.h"
 
 namespace imagenets {
 namespace designer {
 
 namespace {
 
+// Attribute values may hold a multi-line net (net_yaml): newlines as character references.
 std::string xml(const std::string& s) {
   std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      case '\n': out += "&#10;"; break;
-      default: out += c;
-    }
+  for (char c : xmlEscape(s)) {
+    if (c == '\n') out += "&#10;";
+    else out += c;
   }
   return out;
 }

@@ -304,6 +304,10 @@ TEST_F(DesignerTest, FeedbackIsSetLikeTheNetFileAndItsTraceComesAsJson) {
   EXPECT_TRUE(value["chosen_value"].is_number());
   const json confidence = json::parse(c.waitForFrame("detector.confidence", "preview").payload);
   EXPECT_GT(confidence["data"].get<double>(), 0.5);
+
+  // Renaming the score block renames it in the feedback too.
+  expectOk(c.request({{"op", "rename_block"}, {"block", "detector"}, {"name", "det"}}));
+  EXPECT_EQ(blockOf(netState(c), "threshold")["feedback"]["score"], "det.confidence");
 }
 
 TEST_F(DesignerTest, ExportsALaunchFileAndAGraph) {

@@ -20,11 +20,11 @@
 
 #include <Eigen/Geometry>
 
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 
 namespace friend_calibration {
 
-using friend_hw_sim::RobotModel;
+using robot_description::RobotModel;
 
 // One marker detection in one camera image (the robust detection's result).
 struct MarkerObservation {

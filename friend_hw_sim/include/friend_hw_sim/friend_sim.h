@@ -25,7 +25,7 @@
 #include <ros/ros.h>
 
 #include "friend_hw_sim/joint_group_server.h"
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 #include "imagenets/WorldModelGet.h"
 #include "imagenets/WorldModelSet.h"
 
@@ -46,8 +46,8 @@ class FriendSim {
   ~FriendSim();
 
   RobotState state() const;
-  const RobotModel& nominal() const { return nominal_; }
-  const RobotModel& truth() const { return truth_; }
+  const robot_description::RobotModel& nominal() const { return nominal_; }
+  const robot_description::RobotModel& truth() const { return truth_; }
 
  private:
   void tick(const ros::TimerEvent& e);
@@ -57,7 +57,7 @@ class FriendSim {
   void publishWrench(const RobotState& s);
 
   ros::NodeHandle nh_, pnh_;
-  RobotModel nominal_, truth_;
+  robot_description::RobotModel nominal_, truth_;
   double time_scale_ = 1.0;  // ~time_scale, read live (timer thread only)
   std::unique_ptr<JointGroupServer> arm_, head_;
   ros::Publisher joint_states_, truth_joint_states_, wrench_;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "imagenets/registry.h"
+#include "imagenets/xml_escape.h"
 
 namespace imagenets {
 namespace {
@@ -26,20 +27,6 @@ std::mutex& exportsMutex() {
 std::vector<Export>& exports() {
   static std::vector<Export> list;
   return list;
-}
-
-std::string xmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 bool isSharedLibrary(const std::string& file) {

@@ -64,26 +64,6 @@ double median(std::vector<double> values);
 // Per-axis median: x, y and z medians taken independently (robust to outliers in any axis).
 Eigen::Vector3d medianTranslation(const std::vector<Eigen::Vector3d>& translations);
 
-// Classic (distal, Denavit-Hartenberg 1955) convention: link i transforms frame i-1 to frame i as
-//   A_i = Rot_z(theta_i) * Trans_z(d_i) * Trans_x(a_i) * Rot_x(alpha_i),
-// with theta_i = q_i + theta_offset_i for a revolute joint, and d_i = q_i + d_offset for a
-// prismatic one. Metres and radians.
-struct DhRow {
-  double d = 0, theta = 0, a = 0, alpha = 0;  // theta (revolute) or d (prismatic) is an offset
-  bool prismatic = false;
-};
-// A DH table as a flat list, one row of 4 per joint in the textbook column order
-// [d, theta, a, alpha, d, theta, a, alpha, ...] (all revolute). Throws FrameError if the size is
-// not a positive multiple of 4 or a value is not finite.
-std::vector<DhRow> parseDhTable(const std::vector<double>& flat);
-Eigen::Isometry3d dhTransform(const DhRow& row, double joint_value);
-// Base -> frame i for every link i = 1..n (result[i-1]). Throws FrameError if the sizes differ or
-// a joint value is not finite.
-std::vector<Eigen::Isometry3d> forwardKinematicsChain(const std::vector<DhRow>& table,
-                                                      const std::vector<double>& joints);
-// Base -> last frame.
-Eigen::Isometry3d forwardKinematics(const std::vector<DhRow>& table, const std::vector<double>& joints);
-
 // Stereo fusion of two measurements of one pose (paper 4.2): when both are valid and agree within
 // the limits, their mean (mean translation, eigenvector mean rotation); when only one is valid,
 // that one; when they disagree or none is valid, invalid with the reason.

@@ -5,13 +5,13 @@
 
 #include <string>
 
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 
-namespace friend_hw_sim {
+namespace robot_description {
 
 // Joint i of a chain becomes a revolute joint from link i-1 to an intermediate "<joint>_rotor"
 // link (origin Rz(theta_offset), axis z), then a fixed joint Tz(d) Tx(a) Rx(alpha) to link i, so
 // TF of link i equals the DH frame i exactly.
 std::string generateUrdf(const RobotDescription& description, const std::string& robot_name = "friend");
 
-}  // namespace friend_hw_sim
+}  // namespace robot_description

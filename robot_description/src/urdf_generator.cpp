@@ -1,10 +1,10 @@
-#include "friend_hw_sim/urdf_generator.h"
+#include "robot_description/urdf_generator.h"
 
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
-namespace friend_hw_sim {
+namespace robot_description {
 namespace {
 
 class UrdfWriter {
@@ -162,4 +162,4 @@ std::string generateUrdf(const RobotDescription& d, const std::string& robot_nam
   return o.str();
 }
 
-}  // namespace friend_hw_sim
+}  // namespace robot_description

@@ -6,10 +6,9 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "friend_hw_sim/joint_trajectory.h"
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 
-using namespace friend_hw_sim;
+using namespace robot_description;
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
@@ -87,32 +86,6 @@ TEST(RobotModel, BadDescriptionsAreReportedWithFileAndKey) {
   std::remove(path.c_str());
 }
 
-TEST(RobotModel, DefaultTrueErrorIsAboutFifteenMillimetresAndTwoDegrees) {
-  const auto nominal = loadRobotDescription("config/friend/robot.yaml");
-  const auto truth = applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml"));
-  const double dt = (truth.head.mount.translation() - nominal.head.mount.translation()).norm();
-  const double dr = angleBetween(truth.head.mount.linear(), nominal.head.mount.linear());
-  EXPECT_NEAR(dt, 0.015, 0.001);
-  EXPECT_NEAR(dr, 2.0 * kDeg, 0.1 * kDeg);
-  // The arm's marker moves by millimetres, not centimetres.
-  const RobotModel n(nominal), t(truth);
-  const double dm = (n.marker(nominal.arm_calibration_pose).translation() - t.marker(nominal.arm_calibration_pose).translation()).norm();
-  EXPECT_GT(dm, 1e-4);
-  EXPECT_LT(dm, 0.01);
-}
-
-TEST(RobotModel, SeededErrorsAreRepeatableAndOfTheGivenSize) {
-  const auto a = loadTrueError("config/friend/true_error.yaml", 5);
-  const auto b = loadTrueError("config/friend/true_error.yaml", 5);
-  const auto c = loadTrueError("config/friend/true_error.yaml", 6);
-  EXPECT_TRUE(a.head_mount_xyz.isApprox(b.head_mount_xyz));
-  EXPECT_FALSE(a.head_mount_xyz.isApprox(c.head_mount_xyz));
-  EXPECT_NEAR(a.head_mount_xyz.norm(), 0.015, 1e-12);
-  EXPECT_NEAR(a.head_mount_rpy.norm(), 2.0 * kDeg, 1e-12);
-  ASSERT_EQ(a.arm_joint_offsets.size(), 7u);
-  for (double o : a.arm_joint_offsets) EXPECT_LE(std::abs(o), 0.1 * kDeg);
-}
-
 TEST(RobotModel, LookAtCentresTheTargetBetweenTheStereoCameras) {
   const RobotModel m(loadRobotDescription("config/friend/robot.yaml"));
   const Eigen::Vector3d target = m.tcp(m.description().arm_calibration_pose).translation();
@@ -143,21 +116,3 @@ TEST(RobotModel, CalibrationPoseShowsTheMarkerToBothCameras) {
   }
 }
 
-TEST(JointTrajectory, RespectsVelocityLimitsAndEndsAtTheGoal) {
-  const std::vector<double> start{0.0, 1.0}, goal{1.0, 0.5}, vmax{0.5, 2.0};
-  const JointTrajectory t(start, goal, vmax, 0.5);
-  EXPECT_NEAR(t.duration(), JointTrajectory::kPeakToMean * 1.0 / 0.25, 1e-12);
-  double peak = 0;
-  std::vector<double> prev = t.positionAt(0);
-  const double dt = t.duration() / 2000;
-  for (int i = 1; i <= 2000; ++i) {
-    const auto q = t.positionAt(i * dt);
-    peak = std::max(peak, std::abs(q[0] - prev[0]) / dt);
-    prev = q;
-  }
-  EXPECT_LE(peak, 0.25 + 1e-6);
-  EXPECT_GT(peak, 0.24);
-  EXPECT_EQ(t.positionAt(t.duration() + 1), goal);
-  EXPECT_EQ(t.positionAt(0), start);
-  EXPECT_THROW(JointTrajectory(start, goal, vmax, 0.0), std::invalid_argument);
-}

@@ -1,8 +1,7 @@
-// The FRIEND robot's geometry: loaded once from config/friend/robot.yaml (classic DH tables for
-// the arm and the pan-tilt head, fixed mounts, marker, cameras), with forward kinematics, and the
-// "true robot" that the simulator runs: the nominal description plus a hidden, realistic error.
-// Kept small and self-contained (Eigen + yaml-cpp) so the simulator, the URDF generator, the
-// hardware blocks and the calibration all compute the same kinematics.
+// A robot's geometry, read once from its description file (config/friend/robot.yaml for FRIEND):
+// classic DH chains for the arm and the pan-tilt head, fixed mounts, the gripper marker, the
+// cameras; with forward kinematics. The one kinematics library: the simulator, the URDF
+// generator, the blocks and the calibration all compute with it. Small (Eigen + yaml-cpp).
 #pragma once
 
 #include <array>
@@ -11,20 +10,23 @@
 
 #include <Eigen/Geometry>
 
-namespace YAML {
-class Node;
-}
+namespace robot_description {
 
-namespace friend_hw_sim {
-
-// One revolute joint in classic DH: T(i-1 -> i) = Rz(q + theta_offset) Tz(d) Tx(a) Rx(alpha).
+// One joint in the classic (distal, Denavit-Hartenberg 1955) convention:
+//   T(i-1 -> i) = Rz(theta) Tz(d) Tx(a) Rx(alpha),
+// theta = q + theta_offset for a revolute joint, d = q + d for a prismatic one. Metres, radians.
 struct DhJoint {
   std::string name;
   double a = 0, alpha = 0, d = 0, theta_offset = 0;  // m, rad
-  double min = 0, max = 0, max_velocity = 0;          // rad, rad, rad/s
+  bool prismatic = false;
+  double min = 0, max = 0, max_velocity = 0;          // rad (m), rad (m), rad/s (m/s)
 };
 
 Eigen::Isometry3d dhTransform(const DhJoint& joint, double q);
+// A DH table written as a flat list, 4 values per revolute joint in the textbook column order
+// [d, theta offset, a, alpha, ...] (joints named joint_1..n, no limits). Throws
+// std::invalid_argument if the size is not a positive multiple of 4 or a value is not finite.
+std::vector<DhJoint> parseDhTable(const std::vector<double>& flat);
 // URDF meaning: Translation(xyz) * Rz(yaw) * Ry(pitch) * Rx(roll).
 Eigen::Isometry3d fromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
 // Inverse of the rotation part of fromXyzRpy (well defined at pitch = +-90 deg too).
@@ -35,7 +37,8 @@ struct DhChain {
   Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // base -> link 0
   std::vector<DhJoint> joints;
   std::vector<std::string> names() const;
-  // Frames of links 0..n in the base frame (n + 1 entries). Throws if q has the wrong size.
+  // Frames of links 0..n in the base frame (n + 1 entries). Throws std::invalid_argument if q has
+  // the wrong size or a value is not finite.
   std::vector<Eigen::Isometry3d> linkFrames(const std::vector<double>& q) const;
   Eigen::Isometry3d end(const std::vector<double>& q) const { return linkFrames(q).back(); }
   // Empty when q is inside the limits; otherwise a sentence naming the joint, value and limits.
@@ -95,21 +98,4 @@ class RobotModel {
   RobotDescription d_;
 };
 
-// The simulator's hidden deviation of the true robot from the nominal description.
-struct TrueRobotError {
-  Eigen::Vector3d head_mount_xyz = Eigen::Vector3d::Zero();  // m, added to the head mount
-  Eigen::Vector3d head_mount_rpy = Eigen::Vector3d::Zero();  // rad, rotation applied after the mount
-  Eigen::Vector3d marker_xyz = Eigen::Vector3d::Zero();
-  Eigen::Vector3d marker_rpy = Eigen::Vector3d::Zero();
-  std::vector<double> arm_joint_offsets, head_joint_offsets;  // rad, added to theta_offset
-};
-
-// Reads `true_error` settings (see config/friend/true_error.yaml). With `seed` > 0 the error is
-// drawn at random with the given magnitudes (repeatable per seed); with seed 0 the explicit values
-// are used. Throws naming the key on bad input.
-TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override = -1);
-TrueRobotError loadTrueError(const std::string& path, int seed_override = -1);
-// The description of the true robot.
-RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobotError& error);
-
-}  // namespace friend_hw_sim
+}  // namespace robot_description

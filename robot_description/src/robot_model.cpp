@@ -1,8 +1,7 @@
-#include "friend_hw_sim/robot_model.h"
+#include "robot_description/robot_model.h"
 
 #include <cmath>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -10,57 +9,16 @@
 #include <ros/package.h>
 #include <yaml-cpp/yaml.h>
 
-namespace friend_hw_sim {
+#include "robot_description/yaml_fields.h"
+
+namespace robot_description {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
-std::runtime_error err(const std::string& where, const std::string& what) {
-  return std::runtime_error(where + ": " + what);
-}
-
-const YAML::Node need(const YAML::Node& node, const std::string& key, const std::string& where) {
-  if (!node.IsMap() || !node[key]) throw err(where, "missing key '" + key + "'");
-  return node[key];
-}
-
-double number(const YAML::Node& node, const std::string& key, const std::string& where) {
-  const YAML::Node v = need(node, key, where);
-  try {
-    return v.as<double>();
-  } catch (const YAML::Exception&) {
-    throw err(where + "." + key, "expected a number, got '" + YAML::Dump(v) + "'");
-  }
-}
-
-double numberOr(const YAML::Node& node, const std::string& key, double fallback, const std::string& where) {
-  return node.IsMap() && node[key] ? number(node, key, where) : fallback;
-}
-
-std::vector<double> numbers(const YAML::Node& v, const std::string& where, size_t expected_size) {
-  if (!v.IsSequence()) throw err(where, "expected a list of numbers");
-  std::vector<double> out;
-  for (const auto& e : v) {
-    try {
-      out.push_back(e.as<double>());
-    } catch (const YAML::Exception&) {
-      throw err(where, "expected a number, got '" + YAML::Dump(e) + "'");
-    }
-  }
-  if (expected_size && out.size() != expected_size) {
-    throw err(where, "expected " + std::to_string(expected_size) + " numbers, got " + std::to_string(out.size()));
-  }
-  return out;
-}
-
-Eigen::Vector3d vec3(const YAML::Node& node, const std::string& key, const std::string& where, double scale = 1.0) {
-  if (!node.IsMap() || !node[key]) return Eigen::Vector3d::Zero();
-  auto v = numbers(node[key], where + "." + key, 3);
-  return Eigen::Vector3d(v[0], v[1], v[2]) * scale;
-}
+using namespace yaml_fields;
+using yaml_fields::error;
 
 FixedFrame fixedFrame(const YAML::Node& node, const std::string& where, const std::string& default_frame) {
-  if (!node.IsMap()) throw err(where, "expected a map with xyz and rpy_deg");
+  if (!node.IsMap()) throw error(where, "expected a map with xyz and rpy_deg");
   FixedFrame f;
   f.frame = node["frame"] ? node["frame"].as<std::string>() : default_frame;
   f.pose = fromXyzRpy(vec3(node, "xyz", where), vec3(node, "rpy_deg", where, kDeg));
@@ -72,7 +30,7 @@ DhChain chain(const YAML::Node& node, const std::string& where) {
   c.link_prefix = node["link_prefix"] ? node["link_prefix"].as<std::string>() : where + "_link_";
   c.mount = fixedFrame(need(node, "mount", where), where + ".mount", "").pose;
   const YAML::Node joints = need(node, "joints", where);
-  if (!joints.IsSequence() || joints.size() == 0) throw err(where + ".joints", "expected a non-empty list");
+  if (!joints.IsSequence() || joints.size() == 0) throw error(where + ".joints", "expected a non-empty list");
   for (size_t i = 0; i < joints.size(); ++i) {
     const std::string w = where + ".joints[" + std::to_string(i) + "]";
     const YAML::Node j = joints[i];
@@ -85,8 +43,8 @@ DhChain chain(const YAML::Node& node, const std::string& where) {
     dh.min = number(j, "min_deg", w) * kDeg;
     dh.max = number(j, "max_deg", w) * kDeg;
     dh.max_velocity = number(j, "max_velocity_deg", w) * kDeg;
-    if (!(dh.min < dh.max)) throw err(w, "min_deg must be below max_deg");
-    if (!(dh.max_velocity > 0)) throw err(w, "max_velocity_deg must be positive");
+    if (!(dh.min < dh.max)) throw error(w, "min_deg must be below max_deg");
+    if (!(dh.max_velocity > 0)) throw error(w, "max_velocity_deg must be positive");
     c.joints.push_back(dh);
   }
   return c;
@@ -97,18 +55,45 @@ std::vector<double> poseDeg(const YAML::Node& node, const std::string& key, cons
   auto v = numbers(node[key], where + "." + key, c.joints.size());
   for (double& x : v) x *= kDeg;
   const std::string bad = c.limitViolation(v);
-  if (!bad.empty()) throw err(where + "." + key, bad);
+  if (!bad.empty()) throw error(where + "." + key, bad);
   return v;
 }
 
 }  // namespace
 
 Eigen::Isometry3d dhTransform(const DhJoint& j, double q) {
+  const double theta = j.prismatic ? j.theta_offset : q + j.theta_offset;
+  const double d = j.prismatic ? j.d + q : j.d;
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.rotate(Eigen::AngleAxisd(q + j.theta_offset, Eigen::Vector3d::UnitZ()));
-  t.translate(Eigen::Vector3d(j.a, 0, j.d));  // Tz(d) Tx(a) commute
+  t.rotate(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()));
+  t.translate(Eigen::Vector3d(j.a, 0, d));  // Tz(d) Tx(a) commute
   t.rotate(Eigen::AngleAxisd(j.alpha, Eigen::Vector3d::UnitX()));
   return t;
+}
+
+std::vector<DhJoint> parseDhTable(const std::vector<double>& flat) {
+  if (flat.empty() || flat.size() % 4 != 0) {
+    throw std::invalid_argument("a DH table needs 4 values per joint (d, theta, a, alpha), got " +
+                                std::to_string(flat.size()));
+  }
+  std::vector<DhJoint> joints;
+  for (size_t i = 0; i < flat.size(); i += 4) {
+    for (size_t k = i; k < i + 4; ++k) {
+      if (!std::isfinite(flat[k])) {
+        throw std::invalid_argument("DH table row " + std::to_string(i / 4 + 1) + " has a value that is not finite");
+      }
+    }
+    DhJoint j;
+    j.name = "joint_" + std::to_string(i / 4 + 1);
+    j.d = flat[i];
+    j.theta_offset = flat[i + 1];
+    j.a = flat[i + 2];
+    j.alpha = flat[i + 3];
+    j.min = -M_PI;
+    j.max = M_PI;
+    joints.push_back(j);
+  }
+  return joints;
 }
 
 Eigen::Isometry3d fromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy) {
@@ -141,6 +126,12 @@ std::vector<Eigen::Isometry3d> DhChain::linkFrames(const std::vector<double>& q)
   if (q.size() != joints.size()) {
     throw std::invalid_argument("forward kinematics of '" + link_prefix + "*': expected " +
                                 std::to_string(joints.size()) + " joint angles, got " + std::to_string(q.size()));
+  }
+  for (size_t i = 0; i < q.size(); ++i) {
+    if (!std::isfinite(q[i])) {
+      throw std::invalid_argument("forward kinematics of '" + link_prefix + "*': joint '" + joints[i].name +
+                                  "' position is not finite");
+    }
   }
   std::vector<Eigen::Isometry3d> frames{mount};
   for (size_t i = 0; i < joints.size(); ++i) frames.push_back(frames.back() * dhTransform(joints[i], q[i]));
@@ -182,7 +173,7 @@ RobotDescription loadRobotDescription(const std::string& path) {
     const YAML::Node marker = need(arm, "marker", w + ": arm");
     d.marker = fixedFrame(marker, w + ": arm.marker", "gripper_marker");
     d.marker_size = number(marker, "size", w + ": arm.marker");
-    if (!(d.marker_size > 0)) throw err(w + ": arm.marker.size", "must be positive");
+    if (!(d.marker_size > 0)) throw error(w + ": arm.marker.size", "must be positive");
     d.hand_camera = fixedFrame(need(arm, "hand_camera", w + ": arm"), w + ": arm.hand_camera", "hand_camera_optical_frame");
     d.ft_sensor = fixedFrame(need(arm, "ft_sensor", w + ": arm"), w + ": arm.ft_sensor", "ft_sensor");
     d.arm_calibration_pose = poseDeg(arm, "calibration_pose_deg", w + ": arm", d.arm);
@@ -190,7 +181,7 @@ RobotDescription loadRobotDescription(const std::string& path) {
 
     const YAML::Node head = need(root, "head", w);
     d.head = chain(head, w + ": head");
-    if (d.head.joints.size() != 2) throw err(w + ": head.joints", "a pan-tilt head has exactly 2 joints");
+    if (d.head.joints.size() != 2) throw error(w + ": head.joints", "a pan-tilt head has exactly 2 joints");
     const YAML::Node stereo = need(head, "stereo_camera", w + ": head");
     const std::string ws = w + ": head.stereo_camera";
     d.left_camera = fixedFrame(need(stereo, "left", ws), ws + ".left", "");
@@ -220,7 +211,7 @@ std::string defaultRobotDescriptionPath() {
   if (!pkg.empty() && boost::filesystem::exists(pkg + "/config/friend/robot.yaml")) {
     return pkg + "/config/friend/robot.yaml";
   }
-  return std::string(FRIEND_HW_SIM_SOURCE_DIR) + "/config/friend/robot.yaml";
+  return std::string(ROBOT_DESCRIPTION_SOURCE_DIR) + "/config/friend/robot.yaml";
 }
 
 Eigen::Isometry3d RobotModel::tcp(const std::vector<double>& q) const { return d_.arm.end(q) * d_.tool.pose; }
@@ -265,78 +256,4 @@ std::array<double, 2> RobotModel::lookAt(const Eigen::Vector3d& target, std::arr
   return {x[0], x[1]};
 }
 
-TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override) {
-  TrueRobotError e;
-  if (!node || node.IsNull()) return e;
-  if (!node.IsMap()) throw err(where, "expected a map of true-robot error settings");
-  const int seed = seed_override >= 0 ? seed_override : static_cast<int>(numberOr(node, "seed", 0, where));
-  auto offsets = [&](const char* key) {
-    if (!node[key]) return std::vector<double>();
-    auto v = numbers(node[key], where + "." + key, 0);
-    for (double& x : v) x *= kDeg;
-    return v;
-  };
-  if (seed <= 0) {
-    e.head_mount_xyz = vec3(node, "head_mount_xyz", where);
-    e.head_mount_rpy = vec3(node, "head_mount_rpy_deg", where, kDeg);
-    e.marker_xyz = vec3(node, "marker_xyz", where);
-    e.marker_rpy = vec3(node, "marker_rpy_deg", where, kDeg);
-    e.arm_joint_offsets = offsets("arm_joint_offsets_deg");
-    e.head_joint_offsets = offsets("head_joint_offsets_deg");
-    return e;
-  }
-  // Random error of the given magnitudes: a direction uniformly on the sphere times the magnitude
-  // for the mounts, uniform in +-magnitude for joint offsets.
-  const YAML::Node mag = node["random"];
-  const double head_t = numberOr(mag, "head_mount_translation", 0.015, where + ".random");
-  const double head_r = numberOr(mag, "head_mount_rotation_deg", 2.0, where + ".random") * kDeg;
-  const double marker_t = numberOr(mag, "marker_translation", 0.001, where + ".random");
-  const double marker_r = numberOr(mag, "marker_rotation_deg", 0.5, where + ".random") * kDeg;
-  const double joint = numberOr(mag, "joint_offset_deg", 0.1, where + ".random") * kDeg;
-  std::mt19937 rng(static_cast<unsigned>(seed));
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  std::uniform_real_distribution<double> uni(-1.0, 1.0);
-  auto direction = [&] {
-    Eigen::Vector3d v(gauss(rng), gauss(rng), gauss(rng));
-    return Eigen::Vector3d(v.normalized());
-  };
-  e.head_mount_xyz = direction() * head_t;
-  e.head_mount_rpy = direction() * head_r;
-  e.marker_xyz = direction() * marker_t;
-  e.marker_rpy = direction() * marker_r;
-  for (int i = 0; i < 7; ++i) e.arm_joint_offsets.push_back(uni(rng) * joint);
-  for (int i = 0; i < 2; ++i) e.head_joint_offsets.push_back(uni(rng) * joint);
-  return e;
-}
-
-TrueRobotError loadTrueError(const std::string& path, int seed_override) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error("true-robot error file '" + path + "': " + e.what());
-  }
-  const YAML::Node node = root["true_error"] ? root["true_error"] : root;
-  return trueErrorFromYaml(node, path + ": true_error", seed_override);
-}
-
-RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobotError& e) {
-  RobotDescription t = nominal;
-  t.head.mount = fromXyzRpy(nominal.head.mount.translation() + e.head_mount_xyz, Eigen::Vector3d::Zero()) *
-                 fromXyzRpy(Eigen::Vector3d::Zero(), e.head_mount_rpy) *
-                 Eigen::Isometry3d(nominal.head.mount.linear());
-  t.marker.pose = nominal.marker.pose * fromXyzRpy(e.marker_xyz, e.marker_rpy);
-  auto add = [](DhChain& c, const std::vector<double>& offsets, const char* what) {
-    if (offsets.empty()) return;
-    if (offsets.size() != c.joints.size()) {
-      throw std::runtime_error(std::string("true-robot error: ") + what + " has " + std::to_string(offsets.size()) +
-                               " joint offsets, the chain has " + std::to_string(c.joints.size()) + " joints");
-    }
-    for (size_t i = 0; i < offsets.size(); ++i) c.joints[i].theta_offset += offsets[i];
-  };
-  add(t.arm, e.arm_joint_offsets, "arm_joint_offsets_deg");
-  add(t.head, e.head_joint_offsets, "head_joint_offsets_deg");
-  return t;
-}
-
-}  // namespace friend_hw_sim
+}  // namespace robot_description

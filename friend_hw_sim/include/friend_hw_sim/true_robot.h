@@ -1,0 +1,36 @@
+// The simulator's hidden deviation of the true robot from the nominal description: the robot the
+// simulator runs (and renders) differs from robot.yaml by this error, which the calibration has
+// to find. Only the simulator and tests read it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "robot_description/robot_model.h"
+
+namespace YAML {
+class Node;
+}
+
+namespace friend_hw_sim {
+
+struct TrueRobotError {
+  Eigen::Vector3d head_mount_xyz = Eigen::Vector3d::Zero();  // m, added to the head mount
+  Eigen::Vector3d head_mount_rpy = Eigen::Vector3d::Zero();  // rad, rotation applied after the mount
+  Eigen::Vector3d marker_xyz = Eigen::Vector3d::Zero();
+  Eigen::Vector3d marker_rpy = Eigen::Vector3d::Zero();
+  std::vector<double> arm_joint_offsets, head_joint_offsets;  // rad, added to theta_offset
+};
+
+// Reads `true_error` settings (see config/friend/true_error.yaml). With `seed` > 0 the error is
+// drawn at random with the given magnitudes (repeatable per seed); with seed 0 the explicit values
+// are used. Throws naming the key on bad input.
+TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override = -1);
+TrueRobotError loadTrueError(const std::string& path, int seed_override = -1);
+// The description of the true robot.
+robot_description::RobotDescription applyTrueError(const robot_description::RobotDescription& nominal,
+                                                   const TrueRobotError& error);
+
+}  // namespace friend_hw_sim

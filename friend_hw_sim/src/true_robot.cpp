@@ -1,0 +1,91 @@
+#include "friend_hw_sim/true_robot.h"
+
+#include <random>
+#include <stdexcept>
+
+#include <yaml-cpp/yaml.h>
+
+#include "robot_description/yaml_fields.h"
+
+namespace friend_hw_sim {
+
+using robot_description::DhChain;
+using robot_description::fromXyzRpy;
+using robot_description::RobotDescription;
+using namespace robot_description::yaml_fields;
+
+TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override) {
+  TrueRobotError e;
+  if (!node || node.IsNull()) return e;
+  if (!node.IsMap()) throw error(where, "expected a map of true-robot error settings");
+  const int seed = seed_override >= 0 ? seed_override : static_cast<int>(numberOr(node, "seed", 0, where));
+  auto offsets = [&](const char* key) {
+    if (!node[key]) return std::vector<double>();
+    auto v = numbers(node[key], where + "." + key, 0);
+    for (double& x : v) x *= kDeg;
+    return v;
+  };
+  if (seed <= 0) {
+    e.head_mount_xyz = vec3(node, "head_mount_xyz", where);
+    e.head_mount_rpy = vec3(node, "head_mount_rpy_deg", where, kDeg);
+    e.marker_xyz = vec3(node, "marker_xyz", where);
+    e.marker_rpy = vec3(node, "marker_rpy_deg", where, kDeg);
+    e.arm_joint_offsets = offsets("arm_joint_offsets_deg");
+    e.head_joint_offsets = offsets("head_joint_offsets_deg");
+    return e;
+  }
+  // Random error of the given magnitudes: a direction uniformly on the sphere times the magnitude
+  // for the mounts, uniform in +-magnitude for joint offsets.
+  const YAML::Node mag = node["random"];
+  const double head_t = numberOr(mag, "head_mount_translation", 0.015, where + ".random");
+  const double head_r = numberOr(mag, "head_mount_rotation_deg", 2.0, where + ".random") * kDeg;
+  const double marker_t = numberOr(mag, "marker_translation", 0.001, where + ".random");
+  const double marker_r = numberOr(mag, "marker_rotation_deg", 0.5, where + ".random") * kDeg;
+  const double joint = numberOr(mag, "joint_offset_deg", 0.1, where + ".random") * kDeg;
+  std::mt19937 rng(static_cast<unsigned>(seed));
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  auto direction = [&] {
+    Eigen::Vector3d v(gauss(rng), gauss(rng), gauss(rng));
+    return Eigen::Vector3d(v.normalized());
+  };
+  e.head_mount_xyz = direction() * head_t;
+  e.head_mount_rpy = direction() * head_r;
+  e.marker_xyz = direction() * marker_t;
+  e.marker_rpy = direction() * marker_r;
+  for (int i = 0; i < 7; ++i) e.arm_joint_offsets.push_back(uni(rng) * joint);
+  for (int i = 0; i < 2; ++i) e.head_joint_offsets.push_back(uni(rng) * joint);
+  return e;
+}
+
+TrueRobotError loadTrueError(const std::string& path, int seed_override) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error("true-robot error file '" + path + "': " + e.what());
+  }
+  const YAML::Node node = root["true_error"] ? root["true_error"] : root;
+  return trueErrorFromYaml(node, path + ": true_error", seed_override);
+}
+
+RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobotError& e) {
+  RobotDescription t = nominal;
+  t.head.mount = fromXyzRpy(nominal.head.mount.translation() + e.head_mount_xyz, Eigen::Vector3d::Zero()) *
+                 fromXyzRpy(Eigen::Vector3d::Zero(), e.head_mount_rpy) *
+                 Eigen::Isometry3d(nominal.head.mount.linear());
+  t.marker.pose = nominal.marker.pose * fromXyzRpy(e.marker_xyz, e.marker_rpy);
+  auto add = [](DhChain& c, const std::vector<double>& offsets, const char* what) {
+    if (offsets.empty()) return;
+    if (offsets.size() != c.joints.size()) {
+      throw std::runtime_error(std::string("true-robot error: ") + what + " has " + std::to_string(offsets.size()) +
+                               " joint offsets, the chain has " + std::to_string(c.joints.size()) + " joints");
+    }
+    for (size_t i = 0; i < offsets.size(); ++i) c.joints[i].theta_offset += offsets[i];
+  };
+  add(t.arm, e.arm_joint_offsets, "arm_joint_offsets_deg");
+  add(t.head, e.head_joint_offsets, "head_joint_offsets_deg");
+  return t;
+}
+
+}  // namespace friend_hw_sim
