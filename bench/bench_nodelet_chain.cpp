@@ -220,7 +220,9 @@ Figures inOneManager() {
 
 Figures inOneManagerPlain() {
   // The plain nodelets are created directly (no plug-in lookup).
-  nodelet::Loader manager([](const std::string&) { return boost::shared_ptr<nodelet::Nodelet>(new PlainPass); });
+  const boost::function<boost::shared_ptr<nodelet::Nodelet>(const std::string&)> create =
+      [](const std::string&) { return boost::shared_ptr<nodelet::Nodelet>(new PlainPass); };
+  nodelet::Loader manager(create);
   return chainInOneManager(manager, "bench/PlainPass", "h");
 }
 
