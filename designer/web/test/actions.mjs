@@ -100,8 +100,15 @@ export async function click(page, selector) {
   await page.mouse.click(p.x, p.y);
 }
 
-// Turns the preview box of an output on; resolves when it shows a value.
+// Turns the preview box of an output on; resolves when it shows a value. A node can change size
+// while the mouse moves to its button (a run's stats or a new port re-lay it out), so the click is
+// checked by the button's state and given again if it landed elsewhere.
 export async function watch(page, port) {
-  await click(page, `button.watch[data-port="${port}"]`);
+  const button = `button.watch[data-port="${port}"]`;
+  await until(`the preview of ${port} switched on`, async () => {
+    if (await page.$(`${button}.on`)) return true;
+    await click(page, button);
+    return page.waitForSelector(`${button}.on`, { timeout: 2000 }).then(() => true, () => false);
+  });
   await page.waitForSelector(`.preview[data-port="${port}"] [data-revision]`, { timeout: LONG });
 }

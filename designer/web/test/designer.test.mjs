@@ -174,7 +174,10 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     assert.equal(await page.$eval(`${property} [data-testid="feedback-score"]`, (s) => s.value), `${quality}.score`);
     await click(page, `${property} [data-testid="feedback-apply"]`);
     await page.waitForSelector(`button.watch[data-port="${threshold}.feedback_trace"]`, { timeout: LONG });
+    const runs = (await stats(page, threshold)).runs;
     await click(page, '[data-testid="run"]');
+    await untilStats(page, 'the feedback run done', (s) => s[threshold].runs > runs && s[threshold].status === 'ok');
+    await until('the run reported', async () => /^ran /.test((await message(page)).text));
     await watch(page, `${threshold}.feedback_trace`);
     const dots = await page.$$eval(`${nodeSel(threshold)} [data-testid="trace-plot"] .plot-dot`, (d) => d.length);
     assert.equal(dots, 17); // 40, 50, ..., 200
