@@ -15,7 +15,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include "robot_description/joint_state.h"
 
 namespace friend_calibration {

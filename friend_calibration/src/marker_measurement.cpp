@@ -6,7 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "imagenets/blocks/render.h"
+#include "imagenets/vision/render.h"
 
 namespace friend_calibration {
 namespace {

@@ -17,7 +17,7 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "friend_calibration/calibration.h"
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 
 namespace friend_calibration {
 
