@@ -93,37 +93,39 @@ int main() {
 
   struct Mode {
     const char* label;
-    bool feedback;
+    marker::ThresholdMode::Kind kind;
     const char* search;
     bool parallel;
     int threads;
   };
-  const Mode modes[] = {{"net, fixed threshold 40", false, "exhaustive", false, 1},
-                        {"net, feedback 40..80 sequential (41 trials)", true, "exhaustive", false, 1},
-                        {"net, feedback 40..80 parallel, 2 threads", true, "exhaustive", true, 2},
-                        {"net, feedback 40..80 coarse-to-fine", true, "coarse_to_fine", false, 1}};
+  using Kind = marker::ThresholdMode::Kind;
+  const Mode modes[] = {{"net, fixed threshold 40", Kind::Fixed, "exhaustive", false, 1},
+                        {"net, feedback 40..80 sequential (41 trials)", Kind::Range, "exhaustive", false, 1},
+                        {"net, feedback 40..80 parallel, 2 threads", Kind::Range, "exhaustive", true, 2},
+                        {"net, feedback 40..80 coarse-to-fine", Kind::Range, "coarse_to_fine", false, 1},
+                        {"net as written (imagenets detect default)", Kind::AsWritten, "", false, 1}};
   double sequential = 0;
   for (const Mode& mode : modes) {
     marker::ThresholdMode tm;
-    tm.feedback = mode.feedback;
-    tm.search = mode.search;
+    tm.kind = mode.kind;
+    if (mode.kind == Kind::Range) tm.search = mode.search;
     tm.parallel = mode.parallel;
     marker::MarkerDetectionNet net("config/nets/robust_marker_detection.yaml", "config/markers/gripper.yaml", tm,
                                    mode.threads);
     std::vector<double> t;
-    int trials = 0;
+    double trials = 0;  // mean per image
     for (int r = 0; r < reps; ++r) {
       for (const auto& g : squares) {
         const auto msg = cv_bridge::CvImage(std_msgs::Header(), "mono8", g).toImageMsg();
         const auto res = net.run(msg, info);
         t.push_back(res.ms);
-        if (res.trace) trials = static_cast<int>(res.trace->trials);
+        if (res.trace) trials += static_cast<double>(res.trace->trials) / (reps * squares.size());
       }
     }
     const double med = median(t);
-    if (std::string(mode.search) == "exhaustive" && mode.feedback && !mode.parallel) sequential = med;
-    if (mode.feedback) {
-      std::printf("  %-44s%8.2f   (%d trials%s)\n", mode.label, med, trials,
+    if (std::string(mode.search) == "exhaustive" && mode.kind == Kind::Range && !mode.parallel) sequential = med;
+    if (tm.feedback()) {
+      std::printf("  %-44s%8.2f   (%.1f trials%s)\n", mode.label, med, trials,
                   sequential > 0 && med != sequential ? (", x" + std::to_string(sequential / med).substr(0, 4) +
                                                          " vs sequential").c_str()
                                                       : "");

@@ -51,15 +51,22 @@ MarkerDetectionNet::MarkerDetectionNet(const std::string& net_path, const std::s
                 links.end());
   }
   BlockSpec& threshold = findBlock(spec, "threshold");
-  if (mode.feedback) {
-    if (!threshold.feedback) throw std::runtime_error(net_path + ": block 'threshold' has no feedback");
-    threshold.feedback->values.clear();
-    for (double v = mode.from; v <= mode.to + 1e-9; v += mode.step) threshold.feedback->values.push_back(v);
-    threshold.feedback->from = mode.from;
-    threshold.feedback->to = mode.to;
-    threshold.feedback->step = mode.step;
-    threshold.feedback->search = mode.search;
+  if (mode.feedback() && !threshold.feedback) throw std::runtime_error(net_path + ": block 'threshold' has no feedback");
+  if (mode.kind == ThresholdMode::Kind::AsWritten) {
     threshold.feedback->parallel = mode.parallel;
+  } else if (mode.kind == ThresholdMode::Kind::Range) {
+    FeedbackSpec& f = *threshold.feedback;
+    f.values.clear();
+    for (double v = mode.from; v <= mode.to + 1e-9; v += mode.step) f.values.push_back(v);
+    f.from = mode.from;
+    f.to = mode.to;
+    f.step = mode.step;
+    f.search = mode.search;
+    f.parallel = mode.parallel;
+    f.initial.clear();
+    f.good_enough.reset();
+    f.coarse_step.reset();
+    f.fine_radius.reset();
   } else {
     threshold.feedback.reset();
     setProperty(threshold, "threshold", std::to_string(mode.fixed));
@@ -80,7 +87,7 @@ MarkerDetectionNet::Result MarkerDetectionNet::run(const sensor_msgs::ImageConst
   executor_->setInput("detector.camera_info", camera_info);
   const RunReport report = executor_->run();
   result.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (mode_.feedback) result.trace = executor_->output<FeedbackTrace>("threshold.feedback_trace");
+  if (mode_.feedback()) result.trace = executor_->output<FeedbackTrace>("threshold.feedback_trace");
   auto detection = boost::make_shared<imagenets::MarkerDetection>();
   if (result.trace && !result.trace->found) {
     // "No valid candidate": no threshold of the range found the marker. Not an error.
@@ -107,7 +114,7 @@ MarkerDetectionNet::Result MarkerDetectionNet::run(const sensor_msgs::ImageConst
     return result;
   }
   *detection = *out;
-  detection->threshold = mode_.feedback ? result.trace->chosen_value : mode_.fixed;
+  detection->threshold = mode_.feedback() ? result.trace->chosen_value : mode_.fixed;
   result.detection = detection;
   return result;
 }

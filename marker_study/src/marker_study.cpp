@@ -12,6 +12,7 @@
 #include <mutex>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 
 #include <boost/make_shared.hpp>
@@ -41,8 +42,8 @@ std::vector<double> range(double from, double to, double step) {
 
 struct View {
   double pan, tilt;
-  std::string lighting;
-  double illumination;
+  const StudyCondition* condition;
+  double distance, blur, noise, illumination;
   std::uint64_t seed;
 };
 
@@ -56,6 +57,79 @@ double percentile(std::vector<double> v, double q) {
 }
 
 }  // namespace
+
+const std::vector<StudyCondition>& studyConditions() {
+  static const std::vector<StudyCondition> all = [] {
+    std::vector<StudyCondition> c;
+    auto add = [&](const std::string& name) -> StudyCondition& {
+      c.emplace_back();
+      c.back().name = name;
+      return c.back();
+    };
+    add("even");  // the paper's: 600 mm, blur 0.7 px, noise 2, illumination 1
+    add("varying").illumination_min = 0.35;
+    c.back().illumination_max = 2.25;
+    add("far").distance_max = 1.5;  // 0.6..1.5 m
+    add("blur").blur_max = 2.0;     // 0.7..2 px
+    add("noise").noise_max = 6.0;   // 2..6 gray levels
+    add("dim").illumination_min = 0.15;  // 15 %..50 %
+    c.back().illumination_max = 0.5;
+    StudyCondition& dark = add("dim_dark_wall");  // the black border next to a dark wall
+    dark.illumination_min = 0.15;
+    dark.illumination_max = 0.5;
+    dark.background = 0.1;
+    StudyCondition& hard = add("hard");  // everything at once
+    hard.distance_max = 1.5;
+    hard.blur_max = 2.0;
+    hard.noise_max = 6.0;
+    hard.illumination_min = 0.15;
+    hard.illumination_max = 1.0;
+    hard.background = 0.1;
+    return c;
+  }();
+  return all;
+}
+
+std::vector<StudyCondition> selectConditions(const std::string& names) {
+  const auto& all = studyConditions();
+  std::vector<StudyCondition> out;
+  auto add = [&](const StudyCondition& c) {
+    for (const auto& o : out) {
+      if (o.name == c.name) return;
+    }
+    out.push_back(c);
+  };
+  std::stringstream list(names);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    if (name == "all" || name == "paper" || name == "hard") {
+      for (size_t i = 0; i < all.size(); ++i) {
+        const bool paper = i < 2;
+        if (name == "all" || (name == "paper") == paper) add(all[i]);
+      }
+      continue;
+    }
+    const auto it = std::find_if(all.begin(), all.end(), [&](const StudyCondition& c) { return c.name == name; });
+    if (it == all.end()) {
+      std::string known = "paper, hard, all";
+      for (const auto& c : all) known += ", " + c.name;
+      throw std::invalid_argument("marker study condition '" + name + "' is unknown (known: " + known + ")");
+    }
+    add(*it);
+  }
+  if (out.empty()) throw std::invalid_argument("marker study: no condition given in '" + names + "'");
+  return out;
+}
+
+void makeQuick(StudyConfig* config) {
+  config->pan_from = 15;
+  config->pan_to = 285;
+  config->pan_step = 90;  // 4 pans
+  config->tilt_from = 0;
+  config->tilt_to = 70;
+  config->tilt_step = 35;  // 3 tilts, up to the steepest
+  config->supersampling = 3;
+}
 
 std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<void(int, int)>& progress) {
   const MarkerDescription marker = MarkerDescription::load(config.marker);
@@ -73,26 +147,31 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
   applyPrintReflectance(&tag);
 
   std::vector<View> views;
-  for (const auto& lighting : config.lightings) {
-    if (lighting != "even" && lighting != "varying") {
-      throw std::runtime_error("lighting '" + lighting + "' is neither 'even' nor 'varying'");
-    }
-    std::mt19937_64 rng(config.seed + (lighting == "varying" ? 1 : 0));
-    std::uniform_real_distribution<double> u(std::log(config.illumination_min), std::log(config.illumination_max));
+  const auto& catalogue = studyConditions();
+  for (const StudyCondition& condition : config.conditions) {
+    // Each condition draws from its own seeded stream: adding or removing one changes no other's views.
+    const size_t index = static_cast<size_t>(
+        std::find_if(catalogue.begin(), catalogue.end(), [&](const StudyCondition& c) { return c.name == condition.name; }) -
+        catalogue.begin());
+    std::mt19937_64 rng(config.seed + index);
+    auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
     for (double tilt : range(config.tilt_from, config.tilt_to, config.tilt_step)) {
       for (double pan : range(config.pan_from, config.pan_to, config.pan_step)) {
-        const double illumination = lighting == "even" ? 1.0 : std::exp(u(rng));
-        views.push_back({pan, tilt, lighting, illumination, rng()});
+        View v{pan, tilt, &condition, 0, 0, 0, 0, 0};
+        v.illumination = std::exp(uniform(std::log(condition.illumination_min), std::log(condition.illumination_max)));
+        v.distance = uniform(condition.distance_min, condition.distance_max);
+        v.blur = uniform(condition.blur_min, condition.blur_max);
+        v.noise = uniform(condition.noise_min, condition.noise_max);
+        v.seed = rng();
+        views.push_back(v);
       }
     }
   }
 
   ThresholdMode fixed_mode, feedback_mode;
-  fixed_mode.feedback = false;
+  fixed_mode.kind = ThresholdMode::Kind::Fixed;
   fixed_mode.fixed = config.fixed_threshold;
-  feedback_mode.from = config.feedback_from;
-  feedback_mode.to = config.feedback_to;
-  feedback_mode.step = config.feedback_step;
+  feedback_mode.kind = ThresholdMode::Kind::AsWritten;  // what `imagenets detect` runs
   feedback_mode.parallel = false;  // the views run in parallel already
   // Built once here so a bad net file fails before any thread starts.
   { MarkerDetectionNet check(config.net, config.marker, feedback_mode, 1); }
@@ -111,10 +190,13 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
       for (size_t i; (i = next++) < views.size();) {
         const View& v = views[i];
         ViewSettings settings;
-        settings.distance = config.distance;
+        settings.distance = v.distance;
         settings.pan = v.pan * kDeg;
         settings.tilt = v.tilt * kDeg;
         settings.illumination = v.illumination;
+        settings.background = v.condition->background;
+        settings.blur = v.blur;
+        settings.noise = v.noise;
         settings.seed = v.seed;
         Eigen::Isometry3d truth;
         const cv::Mat square_image = renderView(*renderer, square, settings, &truth);
@@ -127,8 +209,12 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
           StudyRow r;
           r.pan = v.pan;
           r.tilt = v.tilt;
-          r.lighting = v.lighting;
+          r.condition = v.condition->name;
+          r.distance = v.distance;
+          r.blur = v.blur;
+          r.noise = v.noise;
           r.illumination = v.illumination;
+          r.background = v.condition->background;
           r.method = method;
           r.threshold = std::numeric_limits<double>::quiet_NaN();
           return r;
@@ -139,7 +225,7 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
         };
         int m = 0;
         for (MarkerDetectionNet* net : {&fixed_net, &feedback_net}) {
-          StudyRow r = row(m == 0 ? fixed_name : "feedback");
+          StudyRow r = row(m == 0 ? fixed_name : "detect");
           const MarkerDetectionNet::Result res = net->run(msg, info);
           if (!res.error.empty()) throw std::runtime_error(res.error);
           r.ms = res.ms;
@@ -181,47 +267,77 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
 }
 
 std::vector<StudySummaryRow> summarize(const std::vector<StudyRow>& rows) {
-  std::vector<std::pair<std::string, std::string>> keys;
+  std::vector<std::string> conditions, methods;  // in the order they first appear
   for (const auto& r : rows) {
-    const auto key = std::make_pair(r.method, r.lighting);
-    if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+    if (std::find(conditions.begin(), conditions.end(), r.condition) == conditions.end()) conditions.push_back(r.condition);
+    if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) methods.push_back(r.method);
   }
-  std::sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) {
-    return a.second != b.second ? a.second < b.second : a.first > b.first;  // lighting, then method
-  });
   std::vector<StudySummaryRow> out;
-  for (const auto& key : keys) {
-    StudySummaryRow s;
-    s.method = key.first;
-    s.lighting = key.second;
-    std::vector<double> mm, deg, ms;
-    for (const auto& r : rows) {
-      if (r.method != key.first || r.lighting != key.second) continue;
-      ++s.images;
-      ms.push_back(r.ms);
-      if (!r.found) continue;
-      ++s.found;
-      mm.push_back(r.position_error_mm);
-      deg.push_back(r.orientation_error_deg);
+  for (const auto& condition : conditions) {
+    for (const auto& method : methods) {
+      StudySummaryRow s;
+      s.method = method;
+      s.condition = condition;
+      std::vector<double> mm, deg, ms;
+      for (const auto& r : rows) {
+        if (r.method != method || r.condition != condition) continue;
+        ++s.images;
+        ms.push_back(r.ms);
+        if (!r.found) continue;
+        ++s.found;
+        mm.push_back(r.position_error_mm);
+        deg.push_back(r.orientation_error_deg);
+      }
+      if (s.images == 0) continue;
+      s.median_mm = percentile(mm, 0.5);
+      s.p95_mm = percentile(mm, 0.95);
+      s.max_mm = percentile(mm, 1.0);
+      s.median_deg = percentile(deg, 0.5);
+      s.max_deg = percentile(deg, 1.0);
+      s.median_ms = percentile(ms, 0.5);
+      out.push_back(s);
     }
-    s.median_mm = percentile(mm, 0.5);
-    s.p95_mm = percentile(mm, 0.95);
-    s.max_mm = percentile(mm, 1.0);
-    s.median_deg = percentile(deg, 0.5);
-    s.max_deg = percentile(deg, 1.0);
-    s.median_ms = percentile(ms, 0.5);
-    out.push_back(s);
+  }
+  return out;
+}
+
+namespace {
+
+const StudySummaryRow* findSummary(const std::vector<StudySummaryRow>& summary, const std::string& condition,
+                                   const std::string& method) {
+  for (const auto& s : summary) {
+    if (s.condition == condition && s.method == method) return &s;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<TargetCheck> checkTargets(const std::vector<StudySummaryRow>& summary) {
+  std::vector<TargetCheck> out;
+  for (const auto& s : summary) {
+    if (s.method != "detect") continue;
+    const StudySummaryRow* april = findSummary(summary, s.condition, "apriltag");
+    if (!april) continue;
+    TargetCheck t;
+    t.condition = s.condition;
+    t.rate_ok = s.found * april->images >= april->found * s.images;  // rates compared without rounding
+    // Nothing found by libapriltag leaves no median to halve: then any median of ours counts.
+    t.median_ok = s.found > 0 && (april->found == 0 || s.median_mm <= 0.5 * april->median_mm);
+    out.push_back(t);
   }
   return out;
 }
 
 std::string toCsv(const std::vector<StudyRow>& rows) {
   std::ostringstream os;
-  os << "pan_deg,tilt_deg,lighting,illumination,method,found,position_error_mm,orientation_error_deg,threshold,time_ms\n";
+  os << "pan_deg,tilt_deg,condition,distance_m,blur_px,noise,illumination,background,method,found,position_error_mm,"
+        "orientation_error_deg,threshold,time_ms\n";
   os << std::fixed;
   for (const auto& r : rows) {
-    os << std::setprecision(0) << r.pan << "," << r.tilt << "," << r.lighting << "," << std::setprecision(3)
-       << r.illumination << "," << r.method << "," << (r.found ? 1 : 0) << ",";
+    os << std::setprecision(0) << r.pan << "," << r.tilt << "," << r.condition << "," << std::setprecision(3)
+       << r.distance << "," << r.blur << "," << r.noise << "," << r.illumination << "," << r.background << ","
+       << r.method << "," << (r.found ? 1 : 0) << ",";
     if (r.found) os << std::setprecision(4) << r.position_error_mm << "," << r.orientation_error_deg << ",";
     else os << ",,";
     if (std::isfinite(r.threshold)) os << std::setprecision(0) << r.threshold;
@@ -231,6 +347,7 @@ std::string toCsv(const std::vector<StudyRow>& rows) {
 }
 
 std::vector<StudyRow> fromCsv(const std::string& csv) {
+  const size_t kFields = 14;
   std::vector<StudyRow> rows;
   std::istringstream in(csv);
   std::string line;
@@ -241,22 +358,29 @@ std::vector<StudyRow> fromCsv(const std::string& csv) {
     std::stringstream ls(line);
     std::string cell;
     while (std::getline(ls, cell, ',')) f.push_back(cell);
-    if (f.size() == 9 && line.back() == ',') f.push_back("");
-    if (f.size() != 10) throw std::runtime_error("study CSV line " + std::to_string(n) + ": expected 10 fields");
+    if (f.size() == kFields - 1 && line.back() == ',') f.push_back("");
+    if (f.size() != kFields) {
+      throw std::runtime_error("study CSV line " + std::to_string(n) + ": expected " + std::to_string(kFields) +
+                               " fields, found " + std::to_string(f.size()));
+    }
     try {
       StudyRow r;
       r.pan = std::stod(f[0]);
       r.tilt = std::stod(f[1]);
-      r.lighting = f[2];
-      r.illumination = std::stod(f[3]);
-      r.method = f[4];
-      r.found = f[5] == "1";
+      r.condition = f[2];
+      r.distance = std::stod(f[3]);
+      r.blur = std::stod(f[4]);
+      r.noise = std::stod(f[5]);
+      r.illumination = std::stod(f[6]);
+      r.background = std::stod(f[7]);
+      r.method = f[8];
+      r.found = f[9] == "1";
       if (r.found) {
-        r.position_error_mm = std::stod(f[6]);
-        r.orientation_error_deg = std::stod(f[7]);
+        r.position_error_mm = std::stod(f[10]);
+        r.orientation_error_deg = std::stod(f[11]);
       }
-      r.threshold = f[8].empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(f[8]);
-      r.ms = f[9].empty() ? 0.0 : std::stod(f[9]);
+      r.threshold = f[12].empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(f[12]);
+      r.ms = f[13].empty() ? 0.0 : std::stod(f[13]);
       rows.push_back(r);
     } catch (const std::logic_error&) {
       throw std::runtime_error("study CSV line " + std::to_string(n) + ": bad number");
@@ -267,28 +391,59 @@ std::vector<StudyRow> fromCsv(const std::string& csv) {
 
 std::string toMarkdown(const std::vector<StudySummaryRow>& summary, const StudyConfig& config) {
   std::ostringstream os;
-  os << "| lighting | method | detected | median pos. error mm | p95 mm | max mm | median orient. error deg | max deg | median time ms |\n";
+  os << "| condition | method | detected | median pos. error mm | p95 mm | max mm | median orient. error deg | max deg | median time ms |\n";
   os << "|---|---|---|---|---|---|---|---|---|\n";
   os << std::fixed;
   for (const auto& s : summary) {
-    os << "| " << s.lighting << " | " << s.method << " | " << s.found << "/" << s.images << " ("
+    os << "| " << s.condition << " | " << s.method << " | " << s.found << "/" << s.images << " ("
        << std::setprecision(1) << 100.0 * s.found / std::max(1, s.images) << " %) | " << std::setprecision(3)
        << s.median_mm << " | " << s.p95_mm << " | " << s.max_mm << " | " << s.median_deg << " | " << s.max_deg
        << " | " << std::setprecision(1) << s.median_ms << " |\n";
   }
-  os << std::setprecision(0) << "\nMarker " << config.marker << ", camera " << config.camera << ", distance "
-     << config.distance * 1000 << " mm, tilt " << config.tilt_from << ".." << config.tilt_to << " step "
-     << config.tilt_step << " deg, pan " << config.pan_from << ".." << config.pan_to << " step " << config.pan_step
-     << " deg; varying illumination " << std::setprecision(2) << config.illumination_min << ".."
-     << config.illumination_max << " (log-uniform), seed " << config.seed << ".\n";
+  os << std::setprecision(0) << "\nMarker " << config.marker << ", camera " << config.camera << ", net " << config.net
+     << ", tilt " << config.tilt_from << ".." << config.tilt_to << " step " << config.tilt_step << " deg, pan "
+     << config.pan_from << ".." << config.pan_to << " step " << config.pan_step << " deg, supersampling "
+     << config.supersampling << ", seed " << config.seed << ". Conditions (drawn per view; illumination log-uniform):\n";
+  for (const auto& c : config.conditions) {
+    auto span = [&](double lo, double hi, int precision) {
+      std::ostringstream t;
+      t << std::fixed << std::setprecision(precision) << lo;
+      if (hi != lo) t << ".." << hi;
+      return t.str();
+    };
+    os << "- " << c.name << ": distance " << span(c.distance_min, c.distance_max, 2) << " m, blur "
+       << span(c.blur_min, c.blur_max, 1) << " px, noise " << span(c.noise_min, c.noise_max, 0) << ", illumination "
+       << span(c.illumination_min, c.illumination_max, 2) << ", wall " << span(c.background, c.background, 2) << "\n";
+  }
   return os.str();
 }
 
-cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& lighting, double scale_mm) {
+std::string sideBySideMarkdown(const std::vector<StudySummaryRow>& summary) {
+  std::ostringstream os;
+  os << "| condition | detected: detect / apriltag | median mm: detect / apriltag | p95 mm: detect / apriltag | "
+        "rate >= apriltag | median <= apriltag / 2 |\n";
+  os << "|---|---|---|---|---|---|\n";
+  os << std::fixed;
+  for (const auto& t : checkTargets(summary)) {
+    const StudySummaryRow& d = *findSummary(summary, t.condition, "detect");
+    const StudySummaryRow& a = *findSummary(summary, t.condition, "apriltag");
+    auto rate = [](const StudySummaryRow& s) {
+      std::ostringstream r;
+      r << std::fixed << std::setprecision(1) << 100.0 * s.found / std::max(1, s.images) << " %";
+      return r.str();
+    };
+    os << "| " << t.condition << " | " << rate(d) << " / " << rate(a) << " | " << std::setprecision(3) << d.median_mm
+       << " / " << a.median_mm << " | " << d.p95_mm << " / " << a.p95_mm << " | " << (t.rate_ok ? "yes" : "NO")
+       << " | " << (t.median_ok ? "yes" : "NO") << " |\n";
+  }
+  return os.str();
+}
+
+cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& condition, double scale_mm) {
   std::vector<double> pans, tilts;
   std::vector<std::string> methods;
   for (const auto& r : rows) {
-    if (r.lighting != lighting) continue;
+    if (r.condition != condition) continue;
     if (std::find(pans.begin(), pans.end(), r.pan) == pans.end()) pans.push_back(r.pan);
     if (std::find(tilts.begin(), tilts.end(), r.tilt) == tilts.end()) tilts.push_back(r.tilt);
     if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) methods.push_back(r.method);
@@ -313,13 +468,13 @@ cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& ligh
     return cv::Scalar(c[0], c[1], c[2]);
   };
   const auto font = cv::FONT_HERSHEY_SIMPLEX;
-  cv::putText(img, "position error [mm], " + lighting + " lighting", cv::Point(left, 22), font, 0.6, cv::Scalar(0, 0, 0), 1,
+  cv::putText(img, "position error [mm], condition " + condition, cv::Point(left, 22), font, 0.6, cv::Scalar(0, 0, 0), 1,
               cv::LINE_AA);
   for (size_t m = 0; m < methods.size(); ++m) {
     const int y0 = top + 20 + static_cast<int>(m) * (panel_h + gap);
     cv::putText(img, methods[m], cv::Point(left, y0 - 6), font, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     for (const auto& r : rows) {
-      if (r.lighting != lighting || r.method != methods[m]) continue;
+      if (r.condition != condition || r.method != methods[m]) continue;
       const int cx = static_cast<int>(std::find(pans.begin(), pans.end(), r.pan) - pans.begin());
       const int cy = static_cast<int>(std::find(tilts.begin(), tilts.end(), r.tilt) - tilts.begin());
       const cv::Rect box(left + cx * cell, y0 + cy * cell, cell, cell);

@@ -1,19 +1,26 @@
-// A reduced marker study (24 views: 12 per lighting) that guards the accuracy targets.
+// A reduced marker study (--quick: 12 views per condition) that guards the accuracy targets: the
+// paper's two conditions, and the harder ones of issue 15 against libapriltag.
 #include <gtest/gtest.h>
 
 #include "marker_study/marker_study.h"
 
 using namespace imagenets::marker;
 
+namespace {
+
+const StudySummaryRow& summaryOf(const std::vector<StudySummaryRow>& summary, const std::string& condition,
+                                 const std::string& method) {
+  for (const auto& s : summary) {
+    if (s.condition == condition && s.method == method) return s;
+  }
+  throw std::runtime_error("no summary row " + condition + " / " + method);
+}
+
+}  // namespace
+
 TEST(MarkerStudy, ReducedStudyMeetsTheAccuracyTargets) {
   StudyConfig config;
-  config.pan_from = 15;
-  config.pan_to = 285;
-  config.pan_step = 90;  // 4 pans
-  config.tilt_from = 0;
-  config.tilt_to = 70;
-  config.tilt_step = 35;  // 3 tilts, up to the steepest
-  config.supersampling = 3;
+  makeQuick(&config);
   config.threads = 2;
   int last = 0;
   const auto rows = runStudy(config, [&](int done, int total) {
@@ -23,24 +30,69 @@ TEST(MarkerStudy, ReducedStudyMeetsTheAccuracyTargets) {
   EXPECT_EQ(last, 24);
   ASSERT_EQ(rows.size(), 24u * 3);
   const auto summary = summarize(rows);
-  ASSERT_EQ(summary.size(), 6u);  // 3 methods x 2 lightings
-  for (const auto& lighting : {"even", "varying"}) {
-    const StudySummaryRow* feedback = nullptr;
-    const StudySummaryRow* april = nullptr;
-    for (const auto& s : summary) {
-      if (s.lighting != lighting) continue;
-      if (s.method == "feedback") feedback = &s;
-      if (s.method == "apriltag") april = &s;
-    }
-    ASSERT_TRUE(feedback && april) << lighting;
-    EXPECT_EQ(feedback->found, feedback->images) << lighting;
-    EXPECT_LE(feedback->max_mm, 3.0) << lighting;
-    EXPECT_LE(feedback->median_mm, 0.5) << lighting;
-    EXPECT_LE(feedback->median_mm, april->median_mm) << lighting;  // no worse than the peer
-    EXPECT_LE(feedback->median_deg, 0.5) << lighting;
+  ASSERT_EQ(summary.size(), 6u);  // 3 methods x 2 conditions
+  for (const auto& condition : {"even", "varying"}) {
+    const StudySummaryRow& detect = summaryOf(summary, condition, "detect");
+    const StudySummaryRow& april = summaryOf(summary, condition, "apriltag");
+    EXPECT_EQ(detect.found, detect.images) << condition;
+    EXPECT_LE(detect.max_mm, 3.0) << condition;
+    EXPECT_LE(detect.median_mm, 0.5) << condition;
+    EXPECT_LE(detect.median_mm, april.median_mm) << condition;  // no worse than the peer
+    EXPECT_LE(detect.median_deg, 0.5) << condition;
   }
   const std::string csv = toCsv(rows);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 72);
+  const auto back = fromCsv(csv);
+  ASSERT_EQ(back.size(), rows.size());
+  EXPECT_EQ(back[5].condition, rows[5].condition);
+  EXPECT_NEAR(back[5].illumination, rows[5].illumination, 1e-3);
   const cv::Mat map = errorMapImage(rows, "even", 3.0);
   EXPECT_FALSE(map.empty());
+}
+
+TEST(MarkerStudy, HarderConditionsMeetTheTargetsAgainstAprilTag) {
+  StudyConfig config;
+  makeQuick(&config);
+  config.conditions = selectConditions("hard");
+  config.threads = 2;
+  const auto rows = runStudy(config);
+  ASSERT_EQ(rows.size(), config.conditions.size() * 12 * 3);
+  // The views really are drawn within each condition's ranges.
+  for (const auto& r : rows) {
+    const StudyCondition& c = selectConditions(r.condition).front();
+    EXPECT_GE(r.distance, c.distance_min - 1e-9) << r.condition;
+    EXPECT_LE(r.distance, c.distance_max + 1e-9) << r.condition;
+    EXPECT_GE(r.illumination, c.illumination_min - 1e-9) << r.condition;
+    EXPECT_LE(r.illumination, c.illumination_max + 1e-9) << r.condition;
+    EXPECT_LE(r.blur, c.blur_max + 1e-9) << r.condition;
+    EXPECT_LE(r.noise, c.noise_max + 1e-9) << r.condition;
+  }
+  const auto summary = summarize(rows);
+  const auto checks = checkTargets(summary);
+  ASSERT_EQ(checks.size(), config.conditions.size());
+  for (const auto& t : checks) {
+    const StudySummaryRow& detect = summaryOf(summary, t.condition, "detect");
+    const StudySummaryRow& april = summaryOf(summary, t.condition, "apriltag");
+    EXPECT_TRUE(t.rate_ok) << t.condition << ": detect " << detect.found << "/" << detect.images << ", apriltag "
+                           << april.found << "/" << april.images;
+    EXPECT_TRUE(t.median_ok) << t.condition << ": median detect " << detect.median_mm << " mm, apriltag "
+                             << april.median_mm << " mm";
+  }
+  const std::string table = sideBySideMarkdown(summary);
+  EXPECT_NE(table.find("| dim_dark_wall |"), std::string::npos) << table;
+}
+
+TEST(MarkerStudy, UnknownConditionNamesTheNameAndTheKnownOnes) {
+  try {
+    selectConditions("even,foggy");
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'foggy'"), std::string::npos) << what;
+    EXPECT_NE(what.find("dim_dark_wall"), std::string::npos) << what;
+  }
+  EXPECT_EQ(selectConditions("paper").size(), 2u);
+  EXPECT_EQ(selectConditions("all").size(), studyConditions().size());
+  EXPECT_EQ(selectConditions("hard").size() + 2, studyConditions().size());
+  EXPECT_EQ(selectConditions("dim,dim").size(), 1u);
 }

@@ -1,6 +1,7 @@
 // `imagenets detect --marker M.yaml --camera C.yaml [--threshold T | --feedback FROM:TO:STEP] IMAGE...`
-// Runs the robust marker detection net (config/nets/robust_marker_detection.yaml) on each image
-// and prints YAML: one entry per image. A bad image gets an `error` entry; the others are still
+// Runs the robust marker detection net (config/nets/robust_marker_detection.yaml) on each image,
+// with the threshold feedback the net declares unless --threshold or --feedback replace it, and
+// prints YAML: one entry per image. A bad image gets an `error` entry; the others are still
 // processed; the exit code is then 1.
 #include <cmath>
 #include <cstdio>
@@ -44,7 +45,7 @@ std::string defaultNet() {
 int run(const Args& args) {
   std::string marker_path, camera_path, net_path;
   marker::ThresholdMode mode;
-  bool fixed = false, feedback = false;
+  bool fixed = false, feedback = false, coarse_to_fine = false;
   std::vector<std::string> images;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -56,7 +57,7 @@ int run(const Args& args) {
       char* end = nullptr;
       const long t = std::strtol(v.c_str(), &end, 10);
       if (*end || t < 0 || t > 255) throw UsageError("--threshold '" + v + "' is not an integer 0..255");
-      mode.feedback = false;
+      mode.kind = marker::ThresholdMode::Kind::Fixed;
       mode.fixed = static_cast<int>(t);
       fixed = true;
     } else if (a == "--feedback") {
@@ -65,12 +66,19 @@ int run(const Args& args) {
           mode.to < mode.from || mode.from < 0 || mode.to > 255) {
         throw UsageError("--feedback '" + v + "' is not FROM:TO:STEP within 0..255");
       }
+      mode.kind = marker::ThresholdMode::Kind::Range;
       feedback = true;
-    } else if (a == "--coarse-to-fine") mode.search = "coarse_to_fine";
+    } else if (a == "--coarse-to-fine") {
+      mode.search = "coarse_to_fine";
+      coarse_to_fine = true;
+    }
     else if (a.size() > 1 && a[0] == '-') throw unknownArgument(a);
     else images.push_back(a);
   }
   if (fixed && feedback) throw UsageError("give --threshold or --feedback, not both");
+  if (coarse_to_fine && !feedback) {
+    throw UsageError("--coarse-to-fine orders a --feedback FROM:TO:STEP range (without one the net's own feedback runs)");
+  }
   if (marker_path.empty()) throw UsageError("--marker MARKER.yaml is required");
   if (camera_path.empty()) throw UsageError("--camera CAMERA.yaml is required");
   if (images.empty()) throw UsageError("no IMAGE given");
@@ -146,7 +154,8 @@ int run(const Args& args) {
 IMAGENETS_TOOL_COMMAND(detect, "detect",
                        "detect --marker MARKER.yaml --camera CAMERA.yaml [--threshold T | --feedback FROM:TO:STEP] "
                        "[--coarse-to-fine] [--net NET.yaml] IMAGE...",
-                       "find a square marker in images (robust detection net); print YAML: points, confidence, pose",
+                       "find a square marker in images (robust detection net, its threshold feedback unless "
+                       "--threshold/--feedback replace it); print YAML: points, confidence, pose",
                        run);
 
 }  // namespace tool

@@ -1,7 +1,8 @@
 // Runs the robust marker detection net (config/nets/robust_marker_detection.yaml, paper Fig. 3.3)
 // on images held in memory: the net's `source` and `camera` blocks are taken out and their
-// consumers (gray.image, detector.camera_info) fed directly. The threshold block either keeps its
-// feedback (with the range given here) or gets a fixed threshold and no feedback.
+// consumers (gray.image, detector.camera_info) fed directly. The threshold block keeps its feedback
+// as the net writes it (the default: what `imagenets detect` runs), gets a plain range instead, or
+// gets a fixed threshold and no feedback.
 #pragma once
 
 #include <memory>
@@ -19,11 +20,13 @@ class Executor;
 namespace marker {
 
 struct ThresholdMode {
-  bool feedback = true;
-  double from = 40, to = 80, step = 1;  // feedback range
-  std::string search = "exhaustive";    // or coarse_to_fine
-  bool parallel = true;                 // feedback trials in parallel
-  int fixed = 40;                       // without feedback
+  enum class Kind { AsWritten, Range, Fixed };
+  Kind kind = Kind::AsWritten;
+  bool feedback() const { return kind != Kind::Fixed; }
+  double from = 40, to = 80, step = 1;  // Range: the candidates (no `initial`, no `good_enough`)
+  std::string search = "exhaustive";    // Range: or coarse_to_fine
+  bool parallel = true;                 // AsWritten, Range: feedback trials in parallel
+  int fixed = 40;                       // Fixed: the threshold
 };
 
 class MarkerDetectionNet {
