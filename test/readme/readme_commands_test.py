@@ -135,6 +135,13 @@ class ReadmeCommands(unittest.TestCase):
         out = self.run_command("config/friend/robot.yaml", "rosrun imagenets friend_urdf")
         self.assertIn('<robot name="friend"', out)
 
+    def test_friend_types_keep_their_names(self):
+        # FRIEND's types live in srv/friend/, action/friend/: the tools still find them by name.
+        out = self.run_command("README.md", "rossrv show imagenets/Calibrate")
+        self.assertIn("int32 redundancy", out)
+        out = self.run_command("README.md", "rosmsg show imagenets/MoveJointsGoal")
+        self.assertIn("float64[] positions", out)
+
     def test_rosrun_calibration_node_serves(self):
         self.ensure_master()
         node = self.start("README.md", "rosrun imagenets friend_calibration_node")
