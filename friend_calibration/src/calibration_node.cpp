@@ -15,8 +15,8 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "imagenets/blocks/frames.h"
 #include "imagenets/executor.h"
+#include "imagenets/vision/frames.h"
 #include "robot_description/joint_state.h"
 
 namespace friend_calibration {

@@ -10,9 +10,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include "friend_hw_sim/friend_sim.h"
-#include "imagenets/blocks/frames.h"
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/read_camera_info.h"
+#include "imagenets/vision/frames.h"
+#include "imagenets/vision/marker.h"
+#include "imagenets/vision/read_camera_info.h"
 
 namespace friend_hw_sim {
 
@@ -212,7 +212,7 @@ CameraSim::Camera CameraSim::makeCamera(ros::NodeHandle nh, const std::string& n
   c.name = name;
   c.frame = frame;
   try {
-    c.info = imagenets::blocks::readCameraInfo(info_file);
+    c.info = imagenets::readCameraInfo(info_file);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("camera '" + name + "': " + e.what());
   }

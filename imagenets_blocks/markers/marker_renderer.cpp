@@ -3,11 +3,12 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "imagenets/blocks/apriltag_marker.h"
+#include "imagenets/vision/apriltag_marker.h"
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/marker_msgs.h"
-#include "imagenets/blocks/marker_scene.h"
+#include "imagenets/vision/marker.h"
+#include "imagenets/vision/frames.h"
+#include "imagenets/vision/marker_msgs.h"
+#include "imagenets/vision/marker_scene.h"
 #include "imagenets/register_block.h"
 
 namespace imagenets {
@@ -91,7 +92,7 @@ class MarkerRenderer : public Block {
     ctx.output("camera_info", info_out);
     auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
     pose->header = header;
-    pose->pose = marker::toPoseMsg(truth);
+    pose->pose = frames::toPose(truth);
     ctx.output("ground_truth", pose);
   }
 };

@@ -2,7 +2,7 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/render.h"
+#include "imagenets/vision/render.h"
 #include "imagenets/register_block.h"
 
 namespace imagenets {

@@ -20,7 +20,8 @@
 #include "friend_calibration/calibration.h"
 #include "imagenets/BlockNodeletStatus.h"
 #include "imagenets/Calibrate.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
+#include "robot_description/joint_state.h"
 #include "rostest_util.h"
 
 namespace {
@@ -36,16 +37,6 @@ double mmBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
 }
 double degBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return friend_calibration::angleBetween(a, b) / kDeg;
-}
-
-std::vector<double> positions(const sensor_msgs::JointState& js, const std::vector<std::string>& names) {
-  std::vector<double> q;
-  for (const auto& n : names) {
-    const auto it = std::find(js.name.begin(), js.name.end(), n);
-    if (it == js.name.end()) throw std::runtime_error("joint state without '" + n + "'");
-    q.push_back(js.position[it - js.name.begin()]);
-  }
-  return q;
 }
 
 class Fig4CalibrationNets : public ::testing::Test {
@@ -116,7 +107,8 @@ TEST_F(Fig4CalibrationNets, SameMeasurementsGiveTheCppImplementationsFrames) {
   const auto& d = model.description();
   // The joint angles of the last loop; every loop commands the same pose and the simulator's
   // encoders are noise-free here, so they are every loop's angles.
-  const std::vector<double> arm_q = positions(*arm_, d.arm.names()), head_q = positions(*head_, d.head.names());
+  const std::vector<double> arm_q = robot_description::jointPositions(*arm_, d.arm.names()),
+                            head_q = robot_description::jointPositions(*head_, d.head.names());
   std::vector<friend_calibration::Sample> samples;
   for (size_t i = 0; i < fixed_points_->poses.size(); ++i) {
     friend_calibration::Sample s;

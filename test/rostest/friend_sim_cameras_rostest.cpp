@@ -19,7 +19,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include "robot_description/robot_model.h"
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 #include "imagenets/MoveJointsAction.h"
 #include "imagenets/calling_thread_queue.h"
 #include "rostest_util.h"
@@ -87,7 +87,7 @@ TEST_F(FriendSimCameras, MarkerAppearsWhereTheTrueGeometryProjectsIt) {
   auto gm = gt_marker_.wait(2), gl = gt_left_.wait(2),
        gr = gt_right_.wait(2);
   ASSERT_TRUE(gm && gl && gr) << "ground truth topics missing";
-  // The project's marker detector (imagenets/blocks/marker.h) on each image, compared with the
+  // The project's marker detector (imagenets/vision/marker.h) on each image, compared with the
   // 8 defined points of the gripper marker projected through the TRUE geometry.
   const auto marker = imagenets::marker::MarkerDescription::load(ros::package::getPath("imagenets") +
                                                                  "/config/markers/gripper.yaml");

@@ -40,7 +40,7 @@
 
 #include "friend_calibration/calibration.h"
 #include "friend_calibration/calibration_marker_net.h"
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 #include "friend_calibration/storage.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"

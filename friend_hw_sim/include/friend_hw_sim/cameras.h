@@ -1,7 +1,7 @@
 // Simulated cameras of the FRIEND robot: the stereo camera on the pan-tilt head (left/right
 // image_raw + camera_info, identical stamps) and the hand camera on the gripper. Images are
 // rendered from the TRUE geometry (where the arm and head really are) with the shared renderer
-// (imagenets/blocks/render.h): the gripper marker on its plate, plus a textured table, boxes,
+// (imagenets/vision/render.h): the gripper marker on its plate, plus a textured table, boxes,
 // floor and wall (config/friend/scene.yaml).
 //
 // Topics: stereo/{left,right}/{image_raw,camera_info}, hand_camera/{image_raw,camera_info};
@@ -31,7 +31,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <std_srvs/Trigger.h>
 
-#include "imagenets/blocks/render.h"
+#include "imagenets/vision/render.h"
 
 namespace friend_hw_sim {
 

@@ -1,5 +1,5 @@
 // The marker accuracy study (see marker_study.h).
-#include "imagenets/blocks/marker_study.h"
+#include "marker_study/marker_study.h"
 
 #include <algorithm>
 #include <array>
@@ -19,12 +19,12 @@
 #include <cv_bridge/cv_bridge.h>
 #include <opencv2/imgproc.hpp>
 
-#include "imagenets/blocks/apriltag_marker.h"
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/marker_msgs.h"
-#include "imagenets/blocks/marker_net.h"
-#include "imagenets/blocks/marker_scene.h"
-#include "imagenets/blocks/read_camera_info.h"
+#include "imagenets/vision/apriltag_marker.h"
+#include "imagenets/vision/marker.h"
+#include "imagenets/vision/marker_msgs.h"
+#include "marker_study/marker_net.h"
+#include "imagenets/vision/marker_scene.h"
+#include "imagenets/vision/read_camera_info.h"
 
 namespace imagenets {
 namespace marker {
@@ -59,7 +59,7 @@ double percentile(std::vector<double> v, double q) {
 
 std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<void(int, int)>& progress) {
   const MarkerDescription marker = MarkerDescription::load(config.marker);
-  auto info = boost::make_shared<sensor_msgs::CameraInfo>(blocks::readCameraInfo(config.camera));
+  auto info = boost::make_shared<sensor_msgs::CameraInfo>(readCameraInfo(config.camera));
   info->header.frame_id = "camera_optical_frame";
   const render::CameraModel camera = render::CameraModel::fromCameraInfo(*info);
   const std::shared_ptr<const render::Renderer> renderer = sharedRenderer(camera, config.supersampling);

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "imagenets/blocks/render.h"
+#include "imagenets/vision/render.h"
 
 namespace imagenets {
 namespace marker {

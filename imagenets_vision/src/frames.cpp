@@ -1,4 +1,4 @@
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 
 #include <algorithm>
 #include <cmath>

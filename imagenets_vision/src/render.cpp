@@ -1,5 +1,5 @@
 // Ray-casting renderer of textured planes (see render.h for the model and conventions).
-#include "imagenets/blocks/render.h"
+#include "imagenets/vision/render.h"
 
 #include <algorithm>
 #include <cmath>

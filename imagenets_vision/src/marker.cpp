@@ -9,7 +9,7 @@
 // rectified by the homography of the outer corners, is compared with the pattern in 4 rotations
 // (confidence and orientation). The pose: IPPE on the 8 points (both solutions), each refined by
 // Levenberg-Marquardt, the lower reprojection error wins.
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // A reduced marker study (24 views: 12 per lighting) that guards the accuracy targets.
 #include <gtest/gtest.h>
 
-#include "imagenets/blocks/marker_study.h"
+#include "marker_study/marker_study.h"
 
 using namespace imagenets::marker;
 

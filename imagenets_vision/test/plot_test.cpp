@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "imagenets/blocks/plot.h"
+#include "imagenets/vision/plot.h"
 
 using namespace imagenets;
 

@@ -1,4 +1,4 @@
-#include "imagenets/blocks/read_camera_info.h"
+#include "imagenets/vision/read_camera_info.h"
 
 #include <fstream>
 
@@ -15,7 +15,7 @@ std::string writeFile(const std::string& name, const std::string& text) {
 
 std::string errorOf(const std::string& path) {
   try {
-    imagenets::blocks::readCameraInfo(path);
+    imagenets::readCameraInfo(path);
   } catch (const std::runtime_error& e) {
     return e.what();
   }
@@ -35,7 +35,7 @@ TEST(ReadCameraInfo, ReadsAWellFormedFile) {
                                                       "camera_matrix: {rows: 3, cols: 3, data: [500, 0, 320, 0, 500, 240, 0, 0, 1]}\n" +
                                                       kRest);
   std::string name;
-  const auto info = imagenets::blocks::readCameraInfo(path, &name);
+  const auto info = imagenets::readCameraInfo(path, &name);
   EXPECT_EQ(info.width, 640u);
   EXPECT_DOUBLE_EQ(info.K[0], 500);
   EXPECT_EQ(name, "cam");

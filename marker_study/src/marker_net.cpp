@@ -1,4 +1,4 @@
-#include "imagenets/blocks/marker_net.h"
+#include "marker_study/marker_net.h"
 
 #include <chrono>
 #include <limits>

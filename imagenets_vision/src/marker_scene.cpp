@@ -1,4 +1,4 @@
-#include "imagenets/blocks/marker_scene.h"
+#include "imagenets/vision/marker_scene.h"
 
 #include <map>
 #include <mutex>

@@ -1,5 +1,5 @@
 // libapriltag wrapper (see apriltag_marker.h).
-#include "imagenets/blocks/apriltag_marker.h"
+#include "imagenets/vision/apriltag_marker.h"
 
 #include <algorithm>
 #include <cmath>

@@ -17,7 +17,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "imagenets/blocks/render.h"
+#include "imagenets/vision/render.h"
 
 namespace imagenets {
 namespace marker {

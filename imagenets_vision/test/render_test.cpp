@@ -3,7 +3,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "imagenets/blocks/render.h"
+#include "imagenets/vision/render.h"
 
 using namespace imagenets::render;
 

@@ -1,4 +1,4 @@
-#include "imagenets/blocks/plot.h"
+#include "imagenets/vision/plot.h"
 
 #include <algorithm>
 #include <cmath>

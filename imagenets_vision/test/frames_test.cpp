@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 
 using namespace imagenets::frames;
 

@@ -5,7 +5,7 @@
 #include <geometry_msgs/TransformStamped.h>
 
 #include "imagenets/block.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 
 namespace imagenets {
 namespace blocks {

@@ -5,7 +5,7 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TransformStamped.h>
 
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include "imagenets/collectors.h"
 
 namespace imagenets {

@@ -1,4 +1,4 @@
-#include "imagenets/blocks/read_camera_info.h"
+#include "imagenets/vision/read_camera_info.h"
 
 #include <stdexcept>
 
@@ -7,7 +7,6 @@
 #include <yaml-cpp/yaml.h>
 
 namespace imagenets {
-namespace blocks {
 namespace {
 
 // A matrix entry `key: {rows: R, cols: C, data: [...]}` whose R x C must match data and, where ROS
@@ -74,5 +73,4 @@ sensor_msgs::CameraInfo readCameraInfo(const std::string& path, std::string* cam
   return info;
 }
 
-}  // namespace blocks
 }  // namespace imagenets

@@ -3,7 +3,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 
 using namespace imagenets;
 using marker::Detection;

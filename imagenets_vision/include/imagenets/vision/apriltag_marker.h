@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 
 namespace imagenets {
 namespace marker {

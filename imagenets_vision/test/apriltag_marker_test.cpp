@@ -1,7 +1,7 @@
 // libapriltag as a peer detector on rendered AprilTags.
 #include <gtest/gtest.h>
 
-#include "imagenets/blocks/apriltag_marker.h"
+#include "imagenets/vision/apriltag_marker.h"
 
 using namespace imagenets;
 
