@@ -1,15 +1,14 @@
 // bench_calibration_detection: what one calibration sample costs in image processing -- the
-// robust marker detection (marker_measurement.h) of the left and right image -- and how accurate
-// it is, on the simulator's own renderings of the joint method's ten poses (true geometry, default
-// noise), then again with a spurious reflection near the marker in about half of the views
-// (friend_calibration/test/calibration_views.h).
-// Compared: the calibration's hand-written detection (Otsu threshold first, stop when good, else
-// the coarse-to-fine sweep) next to the same method declared as a net
-// (config/nets/calibration_marker_detection.yaml, the engine's generic feedback), then always
-// sweeping, an exhaustive sweep, a single fixed threshold (no feedback) and the whole image
-// instead of the predicted region. Times are CPU time of the detecting thread (robust to a loaded
-// machine; the net runs on an executor with one thread, the caller's) and wall time of a
-// left+right pair detected in parallel, as the node does.
+// robust marker detection net (config/nets/calibration_marker_detection.yaml) of the left and
+// right image -- and how accurate it is, on the simulator's own renderings of the joint method's
+// ten poses (true geometry, default noise), then again with a spurious reflection near the marker
+// in about half of the views (friend_calibration/test/calibration_views.h).
+// Compared: the calibration's detection (Otsu threshold first, stop when good, else the
+// coarse-to-fine sweep), then the same net with its feedback changed: always sweeping, an
+// exhaustive sweep, a single fixed threshold (no feedback) and the whole image instead of the
+// predicted region. Times are CPU time of the detecting thread (robust to a loaded machine; the
+// net runs on an executor with one thread, the caller's) and wall time of a left+right pair
+// detected in parallel, as the node does.
 #include <time.h>
 
 #include <algorithm>
@@ -24,8 +23,9 @@
 #include "calibration_views.h"
 #include "friend_calibration/calibration.h"
 #include "friend_calibration/calibration_marker_net.h"
-#include "friend_calibration/marker_measurement.h"
 #include "imagenets/blocks/image.h"
+#include "imagenets/executor.h"
+#include "imagenets/net.h"
 
 using namespace friend_calibration;
 using Clock = std::chrono::steady_clock;
@@ -97,7 +97,6 @@ Figures measure(const std::vector<CalibrationView>& views, const Detect& detect)
 int main() {
   const CalibrationViews data = renderCalibrationViews();
   const std::vector<CalibrationView>& views = data.views;
-  const auto& marker = data.marker;
   int reflections = 0;
   for (const auto& v : views) reflections += v.reflection;
   std::printf("robust marker detection for the calibration: %zu views of 1024x768 (10 joint-method poses x left/right,\n"
@@ -111,38 +110,50 @@ int main() {
     std::string name;
     Detect detect;
   };
-  auto handWritten = [&](const RobustDetectionOptions& options) -> Detect {
-    return [&marker, options](const CalibrationView& v, int) {
-      return detectMarkerRobustly(v.image, v.info, marker, v.predicted, options);
-    };
-  };
   // The net gets the image as the node receives it (a ROS message), converted before timing.
   std::vector<sensor_msgs::ImageConstPtr> messages;
   for (const auto& v : views) messages.push_back(imagenets::blocks::toImageMsg(v.image, "mono8", v.info.header));
-  CalibrationMarkerNet nets[2];  // one per camera: the two run in parallel
-  const Detect as_net = [&](const CalibrationView& v, int side) {
-    return nets[side].detect(messages[&v - views.data()], v.info, v.predicted);
+  // A variant: the shipped net with its feedback changed (one net per camera, in parallel).
+  const imagenets::NetSpec shipped = imagenets::parseNetFile(CalibrationMarkerNet::defaultNetPath());
+  std::vector<std::unique_ptr<CalibrationMarkerNet>> nets;
+  auto variant = [&](const std::function<void(imagenets::FeedbackSpec&)>& change, bool use_prediction) -> Detect {
+    imagenets::NetSpec spec = shipped;
+    for (auto& b : spec.blocks) {
+      if (b.feedback) change(*b.feedback);
+    }
+    CalibrationMarkerNet* pair[2];
+    for (auto*& net : pair) {
+      nets.push_back(std::make_unique<CalibrationMarkerNet>(spec, 1));
+      net = nets.back().get();
+    }
+    return [&views, &messages, pair, use_prediction](const CalibrationView& v, int side) {
+      return pair[side]->detect(messages[&v - views.data()], v.info,
+                                use_prediction ? std::optional<Eigen::Isometry3d>(v.predicted) : std::nullopt);
+    };
   };
+  auto always_sweep = [](imagenets::FeedbackSpec& f) { f.good_enough.reset(); };
   std::vector<Variant> variants;
-  variants.push_back({"calibration default (Otsu first, stop if good)", handWritten(RobustDetectionOptions())});
-  variants.push_back({"the same as a net (calibration_marker_detection)", as_net});
-  RobustDetectionOptions always_sweep;
-  always_sweep.good_score = 0;
-  variants.push_back({"always the coarse-to-fine sweep", handWritten(always_sweep)});
-  RobustDetectionOptions exhaustive;
-  exhaustive.coarse_from = 20;
-  exhaustive.coarse_to = 235;
-  exhaustive.coarse_step = 5;
-  exhaustive.fine_step = 0;
-  exhaustive.good_score = 0;
-  variants.push_back({"exhaustive 20..235 step 5", handWritten(exhaustive)});
-  RobustDetectionOptions fixed = always_sweep;
-  fixed.coarse_from = fixed.coarse_to = 120;
-  fixed.fine_step = 0;
-  variants.push_back({"fixed threshold 120 (no feedback)", handWritten(fixed)});
-  RobustDetectionOptions whole = always_sweep;
-  whole.roi_margin_px = 0;
-  variants.push_back({"always sweep, whole image (no ROI)", handWritten(whole)});
+  variants.push_back({"calibration default (Otsu first, stop if good)", variant([](imagenets::FeedbackSpec&) {}, true)});
+  variants.push_back({"always the coarse-to-fine sweep", variant(always_sweep, true)});
+  // Candidates given as a list, tried in order, no first guess, no early stop.
+  auto only = [](std::vector<double> values) {
+    return [values](imagenets::FeedbackSpec& f) {
+      f.good_enough.reset();
+      f.initial.clear();
+      f.search = "exhaustive";
+      f.coarse_step.reset();
+      f.fine_radius.reset();
+      f.from.reset();
+      f.to.reset();
+      f.step.reset();
+      f.values = values;
+    };
+  };
+  std::vector<double> every5;
+  for (int t = 20; t <= 235; t += 5) every5.push_back(t);
+  variants.push_back({"exhaustive 20..235 step 5", variant(only(every5), true)});
+  variants.push_back({"fixed threshold 120 (no search)", variant(only({120}), true)});
+  variants.push_back({"always sweep, whole image (no ROI, no pose hint)", variant(always_sweep, false)});
   auto print = [](const std::string& name, const Figures& f) {
     const int views = f.clean + f.disturbed;
     std::printf("%-48s %10.2f %12.2f | %4d / %-5d %7.3f %8.4f %8.3f | %4d / %-5d %-6d %8.3f\n", name.c_str(),
@@ -154,14 +165,5 @@ int main() {
     measure(views, v.detect);  // warm-up (allocations, caches)
     print(v.name, measure(views, v.detect));
   }
-  // Hand-written vs net, interleaved five times so a change of machine load hits both alike.
-  double hand_ms = 0, net_ms = 0;
-  for (int round = 0; round < 5; ++round) {
-    const Figures h = measure(views, variants[0].detect), n = measure(views, variants[1].detect);
-    hand_ms += h.cpu_ms;
-    net_ms += n.cpu_ms;
-  }
-  std::printf("hand-written vs net, 5 interleaved rounds: %.2f vs %.2f ms CPU per image (net / hand-written = %.3f)\n",
-              hand_ms / (5.0 * views.size()), net_ms / (5.0 * views.size()), net_ms / hand_ms);
   return 0;
 }

@@ -2,11 +2,15 @@
 // manager (messages pass by pointer), versus the same chain as 5 plain hand-written nodelets in
 // one manager (no BlockNodelet host: subscribe, publish the same pointer), versus the block chain
 // as 5 separate processes (TCPROS). Prints median and p99 latency, end to end and per hop, and
-// throughput, side by side with their ratios: the host's cost per hop is block / plain. Starts
-// its own ROS master on a private port; needs no sourced environment.
+// throughput, side by side with their ratios: the host's cost per hop is block / plain. As root,
+// also the block chain as 5 processes on two hosts (network namespaces made by scripts/two-hosts:
+// blocks 1, 3, 5 on the "robot", the driver and blocks 2, 4 on the "workstation"), so every hop
+// crosses the veth between them: the price of splitting a net over machines (launch/README.md).
+// Starts its own ROS master on a private port; needs no sourced environment.
 //
 // The blocks are imagenets/Grayscale fed a mono8 image, which they pass on unchanged (by pointer),
 // so the figures are the cost of the links themselves, not of image processing.
+#include <errno.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -33,6 +37,8 @@ constexpr int kHops = kBlocks + 1;  // driver -> block 1 -> ... -> block 5 -> dr
 constexpr int kLatencySamples = 300;
 constexpr int kThroughputMessages = 500;
 constexpr int kWindow = 2;  // messages in flight during the throughput run
+constexpr const char* kRobotIp = "10.77.0.1";  // scripts/two-hosts
+constexpr const char* kWorkstationIp = "10.77.0.2";
 
 using Clock = std::chrono::steady_clock;
 
@@ -226,22 +232,54 @@ Figures inOneManagerPlain() {
   return chainInOneManager(manager, "bench/PlainPass", "h");
 }
 
-Figures inSeparateProcesses() {
+// The chain as one process per block. With `robot_namespace`, blocks 1, 3 and 5 run there (this
+// process runs in the other host's namespace), so every hop crosses between the two hosts.
+Figures inSeparateProcesses(const std::string& prefix, const std::string& robot_namespace = "") {
   std::vector<pid_t> pids;
   for (int i = 1; i <= kBlocks; ++i) {
-    const std::string name = blockName("p", i);
-    const std::string input = i == 1 ? "/bench/p_in" : blockName("p", i - 1) + "/out/image";
-    pids.push_back(spawn({"/usr/lib/nodelet/nodelet", "standalone", "imagenets/Grayscale", "__name:=" + name.substr(1),
-                          name + "/in/image:=" + input},
-                         true));
+    const std::string name = blockName(prefix, i);
+    const std::string input = i == 1 ? "/bench/" + prefix + "_in" : blockName(prefix, i - 1) + "/out/image";
+    std::vector<std::string> command{"/usr/lib/nodelet/nodelet", "standalone", "imagenets/Grayscale",
+                                     "__name:=" + name.substr(1), name + "/in/image:=" + input};
+    if (!robot_namespace.empty() && i % 2 == 1) {
+      const std::vector<std::string> on_robot{"ip", "netns", "exec", robot_namespace, "env", "-u", "ROS_HOSTNAME",
+                                              std::string("ROS_IP=") + kRobotIp};
+      command.insert(command.begin(), on_robot.begin(), on_robot.end());
+    }
+    pids.push_back(spawn(command, true));
   }
   Figures f;
   {
-    Driver driver("/bench/p_in", blockName("p", kBlocks) + "/out/image");
+    Driver driver("/bench/" + prefix + "_in", blockName(prefix, kBlocks) + "/out/image");
     f = driver.run();
   }
   for (pid_t pid : pids) stop(pid);
   return f;
+}
+
+// As root: makes the two hosts and runs this benchmark again on the workstation (which then
+// measures everything, the two-host chain included); removes the hosts when it ends. Returns false
+// (and says why) when it cannot: the benchmark then runs on one host only.
+bool runOnTwoHosts(char** argv, int* status) {
+  if (std::getenv("IMAGENETS_BENCH_HOSTS")) return false;  // already on the workstation
+  const std::string two_hosts = std::string(IMAGENETS_SOURCE_DIR) + "/scripts/two-hosts";
+  if (std::system((two_hosts + " check").c_str()) != 0) {
+    std::printf("(two hosts not measured: network namespaces need root)\n\n");
+    return false;
+  }
+  const std::string id = "imagenets-bench-" + std::to_string(getpid());
+  if (std::system((two_hosts + " up " + id).c_str()) != 0) return false;
+  setenv("IMAGENETS_BENCH_HOSTS", id.c_str(), 1);
+  signal(SIGINT, [](int) {});  // Ctrl-C ends the run on the workstation; then remove the hosts
+  pid_t child = spawn({"ip", "netns", "exec", id + "-workstation", "env", "-u", "ROS_HOSTNAME",
+                       std::string("ROS_IP=") + kWorkstationIp, argv[0]},
+                      false);
+  int wstatus = 0;
+  while (waitpid(child, &wstatus, 0) < 0 && errno == EINTR) {
+  }
+  std::system((two_hosts + " down " + id).c_str());
+  *status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 1;
+  return true;
 }
 
 // Runs again through the catkin devel environment so pluginlib finds the imagenets plug-ins.
@@ -260,8 +298,11 @@ void ensureEnvironment(char** argv) {
 
 int main(int argc, char** argv) {
   ensureEnvironment(argv);
+  int status = 0;
+  if (runOnTwoHosts(argv, &status)) return status;
+  const char* hosts = std::getenv("IMAGENETS_BENCH_HOSTS");
   const int port = 11800 + static_cast<int>(getpid() % 1000);
-  const std::string uri = "http://localhost:" + std::to_string(port);
+  const std::string uri = std::string("http://") + (hosts ? kWorkstationIp : "localhost") + ":" + std::to_string(port);
   setenv("ROS_MASTER_URI", uri.c_str(), 1);
   if (!std::getenv("ROS_HOSTNAME") && !std::getenv("ROS_IP")) setenv("ROS_HOSTNAME", "localhost", 1);
   pid_t master = spawn({"rosmaster", "--core", "-p", std::to_string(port)}, true);
@@ -278,39 +319,56 @@ int main(int argc, char** argv) {
 
   Figures manager = inOneManager();
   Figures plain = inOneManagerPlain();
-  Figures processes = inSeparateProcesses();
+  Figures processes = inSeparateProcesses("p");
+  Figures two_hosts;
+  if (hosts) two_hosts = inSeparateProcesses("r", std::string(hosts) + "-robot");
 
+  std::printf("1024x768 mono8 image (768 KiB) through %d imagenets/Grayscale block nodelets (they pass mono8 on);\n"
+              "%d topic hops (driver -> blocks -> driver); %d latency samples (one image in flight), %d images for\n"
+              "throughput (%d in flight). Per hop = end-to-end / %d.\n\n",
+              kBlocks, kHops, kLatencySamples, kThroughputMessages, kWindow, kHops);
+  // Columns: block nodelets in one manager, plain nodelets (ratio block / plain: the host's cost),
+  // one process per block (ratio processes / block), and with `hosts` the processes alternating
+  // between the two hosts (ratio two hosts / block).
+  std::printf("%-24s %14s %14s %8s %12s %8s", "", "block nodelets", "plain nodelets", "ratio", "processes", "ratio");
+  if (hosts) std::printf(" %12s %8s", "2 hosts", "ratio");
+  std::printf("\n");
+  auto row = [&](const char* label, double block, double hand, double procs, double across) {
+    std::printf("%-24s %14.1f %14.1f %7.2fx %12.1f %7.1fx", label, block, hand, hand > 0 ? block / hand : 0.0,
+                procs, block > 0 ? procs / block : 0.0);
+    if (hosts) std::printf(" %12.1f %7.1fx", across, block > 0 ? across / block : 0.0);
+    std::printf("\n");
+  };
+  auto at = [](const std::vector<double>& v, double p) { return percentile(v, p); };
   auto hop = [](const std::vector<double>& e2e) {
     std::vector<double> out;
     for (double v : e2e) out.push_back(v / kHops);
     return out;
   };
-  std::printf("1024x768 mono8 image (768 KiB) through %d imagenets/Grayscale block nodelets (they pass mono8 on);\n"
-              "%d topic hops (driver -> blocks -> driver); %d latency samples (one image in flight), %d images for\n"
-              "throughput (%d in flight). Per hop = end-to-end / %d.\n\n",
-              kBlocks, kHops, kLatencySamples, kThroughputMessages, kWindow, kHops);
-  std::printf("%-24s %14s %14s %8s %12s %8s\n", "", "block nodelets", "plain nodelets", "ratio", "processes",
-              "ratio");
-  auto row = [](const char* label, double block, double hand, double procs) {
-    std::printf("%-24s %14.1f %14.1f %7.2fx %12.1f %7.1fx\n", label, block, hand, hand > 0 ? block / hand : 0.0,
-                procs, block > 0 ? procs / block : 0.0);
-  };
-  auto at = [](const std::vector<double>& v, double p) { return percentile(v, p); };
-  row("median end-to-end (us)", at(manager.latency_us, 0.5), at(plain.latency_us, 0.5), at(processes.latency_us, 0.5));
-  row("p99 end-to-end (us)", at(manager.latency_us, 0.99), at(plain.latency_us, 0.99), at(processes.latency_us, 0.99));
-  row("median per hop (us)", at(hop(manager.latency_us), 0.5), at(hop(plain.latency_us), 0.5),
-      at(hop(processes.latency_us), 0.5));
-  row("p99 per hop (us)", at(hop(manager.latency_us), 0.99), at(hop(plain.latency_us), 0.99),
-      at(hop(processes.latency_us), 0.99));
-  std::printf("%-24s %14.1f %14.1f %7.2fx %12.1f %7.1fx\n", "throughput (images/s)", manager.throughput,
-              plain.throughput, manager.throughput > 0 ? plain.throughput / manager.throughput : 0.0,
-              processes.throughput, processes.throughput > 0 ? manager.throughput / processes.throughput : 0.0);
-  std::printf("%-24s %14s %14s %8s %12s\n", "same object received", manager.same_pointer ? "yes" : "no",
-              plain.same_pointer ? "yes" : "no", "", processes.same_pointer ? "yes" : "no");
-  std::printf("%-24s %14d %14d %8s %12d\n", "lost images", manager.lost, plain.lost, "", processes.lost);
-  std::printf("\nratio = block nodelets / plain nodelets (latency; the host's cost per hop, target <= 1.2x),\n"
-              "        plain / block (throughput); processes ratio = processes / block (latency),\n"
-              "        block / processes (throughput).\n");
+  for (double p : {0.5, 0.99}) {
+    const std::string label = p == 0.5 ? "median" : "p99";
+    row((label + " end-to-end (us)").c_str(), at(manager.latency_us, p), at(plain.latency_us, p),
+        at(processes.latency_us, p), at(two_hosts.latency_us, p));
+  }
+  for (double p : {0.5, 0.99}) {
+    const std::string label = p == 0.5 ? "median" : "p99";
+    row((label + " per hop (us)").c_str(), at(hop(manager.latency_us), p), at(hop(plain.latency_us), p),
+        at(hop(processes.latency_us), p), at(hop(two_hosts.latency_us), p));
+  }
+  auto per = [](double a, double b) { return b > 0 ? a / b : 0.0; };
+  std::printf("%-24s %14.1f %14.1f %7.2fx %12.1f %7.1fx", "throughput (images/s)", manager.throughput,
+              plain.throughput, per(plain.throughput, manager.throughput), processes.throughput,
+              per(manager.throughput, processes.throughput));
+  if (hosts) std::printf(" %12.1f %7.1fx", two_hosts.throughput, per(manager.throughput, two_hosts.throughput));
+  std::printf("\n%-24s %14s %14s %8s %12s %8s", "same object received", manager.same_pointer ? "yes" : "no",
+              plain.same_pointer ? "yes" : "no", "", processes.same_pointer ? "yes" : "no", "");
+  if (hosts) std::printf(" %12s", two_hosts.same_pointer ? "yes" : "no");
+  std::printf("\n%-24s %14d %14d %8s %12d %8s", "lost images", manager.lost, plain.lost, "", processes.lost, "");
+  if (hosts) std::printf(" %12d", two_hosts.lost);
+  std::printf("\n\nratio = block nodelets / plain nodelets (latency; the host's cost per hop, target <= 1.2x),\n"
+              "        plain / block (throughput); processes and 2 hosts ratios = them / block (latency),\n"
+              "        block / them (throughput). 2 hosts: every hop crosses the veth between two network\n"
+              "        namespaces (robot 10.77.0.1: blocks 1, 3, 5; workstation 10.77.0.2: driver, blocks 2, 4).\n");
 
   spinner.stop();
   ros::shutdown();

@@ -1,5 +1,6 @@
 #include "friend_calibration/calibration_marker_net.h"
 
+#include <limits>
 #include <stdexcept>
 
 #include <geometry_msgs/PoseStamped.h>
@@ -44,22 +45,31 @@ MarkerObservation CalibrationMarkerNet::detect(const sensor_msgs::ImageConstPtr&
   } else {
     executor_->setInput("predicted_pose.value", imagenets::Value());
   }
+  // A marker that is not there is no error (no threshold gives a score); a block that fails, even
+  // inside the feedback's trials (e.g. an unreadable marker file), is.
+  const auto& nodes = executor_->net().nodes();
+  std::vector<size_t> failures_before;
+  for (const auto& n : nodes) failures_before.push_back(executor_->stats(n.name).failures);
   const imagenets::RunReport report = executor_->run();
   MarkerObservation obs;
   const auto detection = executor_->output<imagenets::MarkerDetection>("detector.detection");
   const auto trace = lastTrace();
+  std::string message;
   if (!report.ok() && !(trace && !trace->found)) {
-    std::string message;
     for (const auto& f : report.failed) message += (message.empty() ? "" : "; ") + f;
-    throw std::invalid_argument(executor_->net().origin() + ": " + message);
   }
+  for (size_t i = 0; i < nodes.size() && message.empty(); ++i) {
+    const auto stats = executor_->stats(nodes[i].name);
+    if (stats.failures > failures_before[i]) message = "block '" + nodes[i].name + "': " + stats.last_error;
+  }
+  if (!message.empty()) throw std::invalid_argument(executor_->net().origin() + ": " + message);
   if (!detection || !detection->found) {
     obs.reason = report.ok() ? "marker lost when its corners were refined" : report.failed.front();
     return obs;
   }
   obs.found = true;
   obs.confidence = detection->confidence;
-  obs.threshold = trace->chosen_value;
+  obs.threshold = trace ? trace->chosen_value : std::numeric_limits<double>::quiet_NaN();
   obs.reprojection_error = detection->reprojection_error;
   obs.pose = imagenets::marker::fromPoseMsg(detection->pose);
   for (const auto& p : detection->points) obs.points.emplace_back(p.x, p.y);

@@ -15,6 +15,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "imagenets/executor.h"
 #include "imagenets/vision/frames.h"
 #include "robot_description/joint_state.h"
 
@@ -98,6 +99,12 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
           pnh.param<std::string>("description", robot_description::defaultRobotDescriptionPath()))),
       marker_(imagenets::marker::MarkerDescription::load(
           pnh.param<std::string>("marker", packageFile("config/markers/gripper.yaml")))) {
+  // The robust detection is the net; the node's marker file is its detector's property.
+  for (auto& net : detection_nets_) {
+    net = std::make_unique<CalibrationMarkerNet>();
+    net->executor().setPropertyText("detector", "marker",
+                                    pnh_.param<std::string>("marker", packageFile("config/markers/gripper.yaml")));
+  }
   calibration_file_ = pnh_.param<std::string>("calibration_file", defaultCalibrationFile());
   default_redundancy_ = pnh_.param("redundancy", 5);
   default_method_ = pnh_.param<std::string>("method", "joint");
@@ -245,21 +252,25 @@ void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
 imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::Request& req, const Hooks& hooks) {
   imagenets::Calibrate::Response res;
   const auto& base = model_.description().base_frame;
-  bool expected = false;
-  if (!busy_.compare_exchange_strong(expected, true)) {
-    res.success = false;
-    res.message = "rejected: a calibration is already running (" + busy_with_ + "); try again when it has finished";
-    return res;
+  const int n = req.redundancy > 0 ? req.redundancy : default_redundancy_;
+  const std::string method = req.method.empty() ? default_method_ : req.method;
+  {
+    // One lock for the flag and its description: triggers arrive on several spinner threads at once.
+    std::lock_guard<std::mutex> lock(busy_mutex_);
+    if (busy_) {
+      res.success = false;
+      res.message = "rejected: a calibration is already running (" + busy_with_ + "); try again when it has finished";
+      return res;
+    }
+    busy_ = true;
+    busy_with_ = (req.replay.empty() ? "redundancy " + std::to_string(n) : "replay of " + req.replay) + ", method " +
+                 method + ", started " + utcStamp(true);
   }
   struct Release {
     std::atomic<bool>& b;
     ~Release() { b = false; }
   } release{busy_};
   const auto start = std::chrono::steady_clock::now();
-  const int n = req.redundancy > 0 ? req.redundancy : default_redundancy_;
-  const std::string method = req.method.empty() ? default_method_ : req.method;
-  busy_with_ = (req.replay.empty() ? "redundancy " + std::to_string(n) : "replay of " + req.replay) + ", method " +
-               method + ", started " + utcStamp(true);
   try {
     if (method != "paper" && method != "joint") {
       throw std::runtime_error("unknown method '" + method + "' (expected 'paper' or 'joint')");
@@ -331,16 +342,24 @@ void CalibrationNode::moveBoth(Motion& motion, const CalibrationPose& pose, int 
   arm.sendGoal(arm_goal);
   head.sendGoal(head_goal);
   bool cancelled = false;
+  MoveClient* lost = nullptr;  // a server that went away mid-motion (the robot's driver stopped)
   const bool finished = motion.queue.waitUntil(
       [&] {
         cancelled = hooks.cancelled && hooks.cancelled();
-        return cancelled || (arm.getState().isDone() && head.getState().isDone());
+        for (auto* c : {&arm, &head}) {
+          if (!c->getState().isDone() && !c->isServerConnected()) lost = c;
+        }
+        return cancelled || lost || (arm.getState().isDone() && head.getState().isDone());
       },
       motion_timeout_);
-  if (cancelled || !finished) {
+  if (cancelled || lost || !finished) {
     arm.cancelGoal();
     head.cancelGoal();
     if (cancelled) throw std::runtime_error("cancelled during the motion of sample " + std::to_string(sample + 1));
+    if (lost) {
+      throw std::runtime_error(std::string(lost == &arm ? "arm" : "head") + " action server lost during the motion of sample " +
+                               std::to_string(sample + 1) + " (the robot's driver / friend_sim stopped?)");
+    }
     throw std::runtime_error("motion of sample " + std::to_string(sample + 1) + " did not finish within " +
                              std::to_string(motion_timeout_) + " s");
   }
@@ -395,7 +414,7 @@ sensor_msgs::JointStateConstPtr CalibrationNode::waitForJointStates(const ros::T
                            " s");
 }
 
-Sample CalibrationNode::measure(const StereoPair& pair, const sensor_msgs::JointState& joints) const {
+Sample CalibrationNode::measure(const StereoPair& pair, const sensor_msgs::JointState& joints) {
   const auto& d = model_.description();
   Sample s;
   s.arm_q = robot_description::jointPositions(joints, d.arm.names());
@@ -405,21 +424,20 @@ Sample CalibrationNode::measure(const StereoPair& pair, const sensor_msgs::Joint
   const Eigen::Isometry3d marker = model_.marker(s.arm_q);
   const Eigen::Isometry3d predicted_left = model_.leftCamera(s.head_q).inverse() * marker;
   const Eigen::Isometry3d predicted_right = model_.rightCamera(s.head_q).inverse() * marker;
-  auto detect = [this](const sensor_msgs::ImageConstPtr& img, const sensor_msgs::CameraInfoConstPtr& info,
-                       const Eigen::Isometry3d& predicted, const char* side) {
+  auto detect = [this](int side, const sensor_msgs::ImageConstPtr& img, const sensor_msgs::CameraInfoConstPtr& info,
+                       const Eigen::Isometry3d& predicted) {
     MarkerObservation o;
     try {
-      const cv_bridge::CvImageConstPtr cv = cv_bridge::toCvShare(img, "mono8");
-      o = detectMarkerRobustly(cv->image, *info, marker_, predicted, detection_);
+      o = detection_nets_[side]->detect(img, *info, predicted);
     } catch (const std::exception& e) {
       o.found = false;
-      o.reason = std::string(side) + " image unusable: " + e.what();
+      o.reason = std::string(side == 0 ? "left" : "right") + " image unusable: " + e.what();
     }
     return o;
   };
-  // Left and right in parallel (the two Fig. 3.3 sub-nets of Fig. 4.2).
-  auto right = std::async(std::launch::async, detect, pair.right, pair.right_info, predicted_right, "right");
-  s.left = detect(pair.left, pair.left_info, predicted_left, "left");
+  // Left and right in parallel (the two Fig. 3.3 sub-nets of Fig. 4.2), each on its own net.
+  auto right = std::async(std::launch::async, detect, 1, pair.right, pair.right_info, predicted_right);
+  s.left = detect(0, pair.left, pair.left_info, predicted_left);
   s.right = right.get();
   return s;
 }

@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 #include <std_msgs/Float64.h>
 #include <std_msgs/Float64MultiArray.h>
+#include <std_msgs/Int32.h>
+#include <std_msgs/String.h>
 
+#include "imagenets/collectors.h"
 #include "imagenets/executor.h"
 #include "imagenets/graph.h"
 #include "test_blocks.h"
@@ -177,6 +180,71 @@ links: [counter.count -> out.value]
   EXPECT_NE(r.failed[0].find("2 of 5 repetitions failed (max_failures 1); repetition 2:"), std::string::npos) << r.failed[0];
   EXPECT_NE(r.failed[0].find("run 2 failed on purpose"), std::string::npos) << r.failed[0];
   EXPECT_FALSE(strict->output<std_msgs::Float64MultiArray>("loop.n_all"));
+}
+
+// Indices as numbers, so a test sees every repetition's (a library adds collectors for its types).
+CollectorRegistration<std_msgs::Int32, std_msgs::Float64MultiArray> indices(
+    [](const std::vector<std_msgs::Int32::ConstPtr>& items) {
+      auto all = boost::make_shared<std_msgs::Float64MultiArray>();
+      for (const auto& i : items) all->data.push_back(i->data);
+      return all;
+    });
+
+TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
+  write("index.yaml", R"(
+blocks:
+  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
+links: [k.value -> out.value]
+)");
+  write("indexed.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, repeat: 4, "
+                        "repetition_input: k}}\n");
+  auto e = loadFile("indexed.yaml");
+  // The index port is fed by the block itself: it is not an input of the outer block.
+  EXPECT_EQ(e->net().node(0).block->findInput("k"), nullptr);
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1, 2, 3}));
+
+  write("counted.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, "
+                        "repetition_input: k, repeat_from_input: true}}\n");
+  auto counted = loadFile("counted.yaml");
+  auto three = boost::make_shared<std_msgs::Int32>();
+  three->data = 3;
+  counted->setInput("loop.repeat", boost::shared_ptr<const std_msgs::Int32>(three));
+  ASSERT_TRUE(counted->run().ok());
+  EXPECT_EQ(counted->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1, 2}));
+  three->data = 0;
+  counted->setInput("loop.repeat", boost::shared_ptr<const std_msgs::Int32>(three));
+  const RunReport zero = counted->run();
+  ASSERT_EQ(zero.failed.size(), 1u);
+  EXPECT_NE(zero.failed[0].find("input 'repeat': 0 repetitions"), std::string::npos) << zero.failed[0];
+
+  write("misnamed.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, "
+                         "repetition_input: kk}}\n");
+  try {
+    Net::loadFile(dir() + "/misnamed.yaml");
+    FAIL();
+  } catch (const NetError& e) {
+    EXPECT_NE(std::string(e.what()).find("property 'repetition_input'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no input port 'kk'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SubNet, WithEnoughAllowedFailuresAFailedRunIsAResultNotAnError) {
+  write("always_fails.yaml", R"(
+blocks:
+  counter: {type: test/Counter, properties: {fail_every: 1}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
+links: [counter.count -> out.value]
+)");
+  write("tolerated.yaml", "blocks:\n  once: {type: imagenets/Executor, properties: {net: always_fails.yaml, "
+                          "max_failures: 1}}\n");
+  auto e = loadFile("tolerated.yaml");
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_FALSE(e->output<std_msgs::Float64>("once.n"));
+  auto why = e->output<std_msgs::String>("once.failure");
+  ASSERT_TRUE(why);
+  EXPECT_NE(why->data.find("run 1 failed on purpose"), std::string::npos) << why->data;
 }
 
 TEST(SubNet, RepeatBelowOneIsAClearError) {

@@ -2,6 +2,7 @@
 // [--trials]`: runs a net, prints a progress line per block as it finishes (from the run events, on
 // stderr), writes every output port (images as PNG, the rest as YAML) and prints per-block timings.
 #include <cstdio>
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <mutex>
@@ -51,14 +52,24 @@ int run(const Args& args) {
   }
   if (net_path.empty()) throw UsageError("expects a net file");
 
-  Executor executor(Net::loadFile(net_path), options);
+  // --set changes the net as if written in its file, before its blocks are made: so it also sets
+  // what a block reads once when it is configured (a sub-net's `net`, ...). Relative paths resolve
+  // against the net file, as there.
+  NetSpec spec = parseNetFile(net_path);
   for (const auto& s : sets) {
     const auto eq = s.find('='), dot = s.find('.');
     if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
       throw UsageError("--set '" + s + "' is not block.property=value");
     }
-    executor.setPropertyText(s.substr(0, dot), s.substr(dot + 1, eq - dot - 1), s.substr(eq + 1));
+    const std::string block = s.substr(0, dot), property = s.substr(dot + 1, eq - dot - 1);
+    auto b = std::find_if(spec.blocks.begin(), spec.blocks.end(), [&](const BlockSpec& x) { return x.name == block; });
+    if (b == spec.blocks.end()) throw UsageError("--set '" + s + "': " + net_path + " has no block '" + block + "'");
+    auto p = std::find_if(b->properties.begin(), b->properties.end(),
+                          [&](const PropertySetting& x) { return x.name == property; });
+    if (p == b->properties.end()) p = b->properties.insert(b->properties.end(), PropertySetting{property, "", b->loc});
+    p->text = s.substr(eq + 1);
   }
+  Executor executor(Net::build(spec), options);
   if (!quiet) executor.addObserver(progressPrinter(executor.net(), trials));
   const RunReport report = executor.run();
 

@@ -81,7 +81,9 @@ TEST(Tool, ValidateAcceptsEveryShippedNet) {
   for (const auto& e : boost::filesystem::directory_iterator("config/nets")) {
     if (e.path().extension() == ".yaml") nets.push_back("config/nets/" + e.path().filename().string());
   }
-  for (const char* must : {"config/nets/fig4_2_calibration.yaml", "config/nets/fig4_3_redundant_calibration.yaml"}) {
+  for (const char* must : {"config/nets/fig4_2_calibration.yaml", "config/nets/fig4_3_redundant_calibration.yaml",
+                           "config/nets/calibration.yaml", "config/nets/calibration_sample.yaml",
+                           "config/nets/calibration_sample_replay.yaml"}) {
     EXPECT_NE(std::find(nets.begin(), nets.end(), must), nets.end()) << must;
   }
   for (const auto& net : nets) {
@@ -105,7 +107,11 @@ TEST(Tool, RunWritesOutputsAndTimings) {
   // A bad --set is named and nothing runs.
   r = tool("run config/nets/threshold_demo.yaml --set threshold.threshold=900");
   EXPECT_EQ(r.status, 1);
-  expectContains(r.output, "block 'threshold': property 'threshold': value 900 is out of range [0, 255]");
+  expectContains(r.output, "config/nets/threshold_demo.yaml:15: block 'threshold' (imagenets/Threshold): property "
+                           "'threshold': value 900 is out of range [0, 255]");
+  r = tool("run config/nets/threshold_demo.yaml --set treshold.threshold=90");
+  EXPECT_EQ(r.status, 2);  // a usage error
+  expectContains(r.output, "config/nets/threshold_demo.yaml has no block 'treshold'");
 }
 
 TEST(Tool, RunWritesTheFeedbackTrace) {

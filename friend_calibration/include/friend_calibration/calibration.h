@@ -3,7 +3,7 @@
 // camera. The functions read like the paper's Fig. 4.2 / 4.3 nets:
 //
 //   calibration pose -> gripperMarkerInRobot (arm forward kinematics + marker offset)
-//   left / right image -> robust marker detection (marker_measurement.h) -> markerInLeftCamera
+//   left / right image -> robust marker detection (calibration_marker_net.h) -> markerInLeftCamera
 //   -> fuseStereoDetections -> leftCameraInRobot (invert) -> pthFixedPoint (head DH chain)
 //   N samples -> combineRedundantSamples (mean rotation, per-axis median translation)
 //

@@ -1,7 +1,9 @@
-// The calibration's robust marker detection run as a net (config/nets/calibration_marker_detection.yaml):
-// the same inputs and result as detectMarkerRobustly (marker_measurement.h), computed by the
-// engine's generic feedback instead of a hand-written sweep. One instance holds one loaded net;
-// detect() is not reentrant (use one instance per thread, e.g. per camera).
+// The calibration's robust marker detection (paper 3.4, Fig. 3.3), run as the net
+// config/nets/calibration_marker_detection.yaml: the region around the predicted marker, the
+// region's Otsu threshold first, stop when the detection is good enough, otherwise the threshold
+// sweep coarse-to-fine -- all the engine's generic feedback, no hand-written search. Its options
+// are the net's properties (e.g. executor().setPropertyText("detector", "marker", file)). One
+// instance holds one loaded net; detect() is not reentrant (one instance per camera).
 #pragma once
 
 #include <memory>

@@ -39,7 +39,8 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "friend_calibration/calibration.h"
-#include "friend_calibration/marker_measurement.h"
+#include "friend_calibration/calibration_marker_net.h"
+#include "imagenets/vision/marker.h"
 #include "friend_calibration/storage.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"
@@ -86,7 +87,7 @@ class CalibrationNode {
   void moveBoth(Motion& motion, const CalibrationPose& pose, int sample, const Hooks& hooks);
   StereoPair waitForStereoPair(const ros::Time& after, const Hooks& hooks);
   sensor_msgs::JointStateConstPtr waitForJointStates(const ros::Time& after);
-  Sample measure(const StereoPair& pair, const sensor_msgs::JointState& joints) const;
+  Sample measure(const StereoPair& pair, const sensor_msgs::JointState& joints);
   void publish(const Result& result, const std::string& frame);
   std::string savePictures(const Sample& sample);
   void publishDetections(const StereoPair& pair, const Sample& sample);
@@ -104,7 +105,9 @@ class CalibrationNode {
   double min_valid_fraction_ = 0.5;
   FusionLimits fusion_;
   CombineOptions combine_;
-  RobustDetectionOptions detection_;
+  // The robust detection net (config/nets/calibration_marker_detection.yaml), one per camera so
+  // the left and right image are measured in parallel.
+  std::unique_ptr<CalibrationMarkerNet> detection_nets_[2];
 
   std::string arm_action_, head_action_;
   ros::Subscriber joint_sub_, image_sub_[2], info_sub_[2];
@@ -125,6 +128,7 @@ class CalibrationNode {
   std::mutex calibration_mutex_;  // guards current_ (the published calibration)
   bool have_calibration_ = false;
   Eigen::Isometry3d current_ = Eigen::Isometry3d::Identity();
+  std::mutex busy_mutex_;  // guards busy_with_, and busy_ being set
   std::atomic<bool> busy_{false};
   double detection_time_ = 0;  // s, robust detection of the running calibration (both images)
   std::string busy_with_;

@@ -1,6 +1,8 @@
 #include "imagenets/blocks/sub_net_block.h"
 
 #include <boost/filesystem.hpp>
+#include <std_msgs/Int32.h>
+#include <std_msgs/String.h>
 
 #include "imagenets/collectors.h"
 #include "imagenets/executor.h"
@@ -36,6 +38,9 @@ SubNetBlock::SubNetBlock() {
   addProperty<int>("max_failures", 0, "repetitions that may fail (their results are left out); more fail the block")
       .range(0, 100000);
   addProperty<int>("threads", 0, "worker threads of the sub-net (0 = number of cores)").range(0, 64);
+  addProperty<std::string>("repetition_input", "",
+                           "inner input port (std_msgs/Int32) fed with the repetition's index 0..N-1 (not an outer port)");
+  addProperty<bool>("repeat_from_input", false, "the number of repetitions comes from the input `repeat` (std_msgs/Int32)");
 }
 
 SubNetBlock::~SubNetBlock() = default;
@@ -64,12 +69,25 @@ void SubNetBlock::configure() {
   spec.include_chain = chain;
   executor_ = std::make_unique<Executor>(Net::build(spec), ExecutorOptions{property<int>("threads")});
 
+  const std::string repetition_port = property<std::string>("repetition_input");
+  repetition_input_.clear();
+  if (property<bool>("repeat_from_input")) {
+    addInput<std_msgs::Int32>("repeat", "number of repetitions of this run (>= 1; instead of the property `repeat`)");
+  }
   for (const auto& node : executor_->net().nodes()) {
     const auto* boundary = dynamic_cast<const NetPort*>(node.block.get());
     if (!boundary) continue;
     std::string port = boundary->outerName();
     if (port.empty()) port = node.name;
     const PortType& type = boundary->type();
+    if (boundary->direction() == NetPort::Direction::In && port == repetition_port) {
+      if (type.name != PortType::of<std_msgs::Int32>().name) {
+        throw BlockError("property 'repetition_input': port '" + port + "' of " + spec.origin + " is " + type.name +
+                         ", expected std_msgs/Int32");
+      }
+      repetition_input_ = node.name + ".value";
+      continue;
+    }
     if (boundary->direction() == NetPort::Direction::In) {
       addInput(port, type, "sub-net input '" + node.name + "'");
       inputs_.push_back({port, node.name + ".value"});
@@ -80,6 +98,13 @@ void SubNetBlock::configure() {
       if (collector) addOutput(port + "_all", *collector->collection, "the results of all repetitions of '" + port + "'");
     }
   }
+  if (!repetition_port.empty() && repetition_input_.empty()) {
+    throw BlockError("property 'repetition_input': " + spec.origin + " has no input port '" + repetition_port +
+                     "' (an imagenets/ExecutorInput with port '" + repetition_port + "', type std_msgs/Int32)");
+  }
+  if (property<int>("max_failures") > 0) {
+    addOutput<std_msgs::String>("failure", "why the first failed repetition failed; only when one failed");
+  }
 }
 
 void SubNetBlock::process(Context& ctx) {
@@ -88,12 +113,22 @@ void SubNetBlock::process(Context& ctx) {
   std::lock_guard<std::mutex> lock(run_mutex_);
   Nesting nesting(*executor_, ctx.innerChannel());
   for (const auto& in : inputs_) executor_->setInput(in.inner, ctx.inputValue(in.port));
-  const int repeat = ctx.property<int>("repeat");
+  int repeat = ctx.property<int>("repeat");
+  if (ctx.property<bool>("repeat_from_input")) {
+    repeat = ctx.input<std_msgs::Int32>("repeat")->data;
+    if (repeat < 1) throw BlockError("input 'repeat': " + std::to_string(repeat) + " repetitions (must be >= 1)");
+  }
   std::vector<std::vector<Value>> results(outputs_.size());
+  std::string first_failure_message;
   std::string first_failure;
   int failures = 0;
   for (int i = 0; i < repeat; ++i) {
     if (ctx.cancelled()) throw RunCancelled();
+    if (!repetition_input_.empty()) {
+      auto index = boost::make_shared<std_msgs::Int32>();
+      index->data = i;
+      executor_->setInput(repetition_input_, PortType::of<std_msgs::Int32>().wrap<std_msgs::Int32>(index));
+    }
     // Every repetition re-runs the whole sub-net (sources included: a fresh image, a new move).
     RunReport report = repeat == 1 ? executor_->run() : executor_->runAll();
     if (report.cancelled) throw RunCancelled();
@@ -105,7 +140,10 @@ void SubNetBlock::process(Context& ctx) {
     ctx.emit(done);
     if (!report.failed.empty()) {
       // Its outputs may still hold the previous repetition's values: none of them is taken.
-      if (++failures == 1) first_failure = "repetition " + std::to_string(i + 1) + ": " + report.failed.front();
+      if (++failures == 1) {
+        first_failure = "repetition " + std::to_string(i + 1) + ": " + report.failed.front();
+        first_failure_message = report.failed.front();
+      }
       continue;
     }
     for (size_t o = 0; o < outputs_.size(); ++o) {
@@ -113,10 +151,18 @@ void SubNetBlock::process(Context& ctx) {
       if (v) results[o].push_back(v);
     }
   }
-  if (failures > ctx.property<int>("max_failures") || failures == repeat) {
+  // With max_failures >= the repetitions, even all of them failing leaves the block ok: it then
+  // hands out only `failure` (e.g. a detection sub-net whose "not found" is a result downstream).
+  const int max_failures = ctx.property<int>("max_failures");
+  if (failures > max_failures || (failures == repeat && max_failures < repeat)) {
     throw BlockError("sub-net " + executor_->net().origin() + ": " + std::to_string(failures) + " of " +
                      std::to_string(repeat) + " repetitions failed (max_failures " +
                      std::to_string(ctx.property<int>("max_failures")) + "); " + first_failure);
+  }
+  if (failures > 0) {
+    auto why = boost::make_shared<std_msgs::String>();
+    why->data = first_failure_message;
+    ctx.output("failure", why);
   }
   for (size_t o = 0; o < outputs_.size(); ++o) {
     if (results[o].empty()) continue;

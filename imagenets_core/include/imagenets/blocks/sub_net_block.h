@@ -3,7 +3,11 @@
 // become this block's ports. With `repeat: N` the inner net runs N times per run (paper 4.2, Fig.
 // 4.3) and each output whose type has a collector (collectors.h) also comes as the collection of
 // its N results (`<port>_all`), so a downstream block can take their mean or median. Up to
-// `max_failures` repetitions may fail (a loop that found no marker): they are left out.
+// `max_failures` repetitions may fail (a loop that found no marker): they are left out, and the
+// output `failure` (declared when max_failures > 0) says why the first one failed; with
+// max_failures >= N even a run whose repetitions all failed leaves the block ok (only `failure`
+// comes out). `repetition_input: PORT` feeds the inner input port PORT (std_msgs/Int32) with the
+// repetition's index 0..N-1 (pose k of N); `repeat_from_input: true` takes N from the input `repeat`.
 #pragma once
 
 #include <memory>
@@ -41,6 +45,7 @@ class SubNetBlock : public Block, public InnerNet {
   std::mutex run_mutex_;
   std::vector<InPort> inputs_;
   std::vector<OutPort> outputs_;
+  std::string repetition_input_;  // "block.value" of the inner port fed with the index, or empty
 };
 
 }  // namespace imagenets

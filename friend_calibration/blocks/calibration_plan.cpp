@@ -1,0 +1,73 @@
+// The plan of a FRIEND calibration (paper 4.2): the method, and per sample the calibration pose
+// (calibrationPoses of calibration.h), or the stored file whose samples are replayed.
+#include <boost/make_shared.hpp>
+
+#include "calibration_ports.h"
+#include "friend_calibration/storage.h"
+#include "imagenets/register_block.h"
+
+namespace friend_calibration {
+namespace blocks {
+
+class CalibrationPlan : public imagenets::Block {
+ public:
+  CalibrationPlan() {
+    addOutput<imagenets::CalibrationPlan>("plan", "method, sample count, pose of every sample (or the replay file)");
+    addOutput<std_msgs::Int32>("samples", "number of samples (the `repeat` of the sample sub-net)");
+    addProperty<std::string>("method", "joint", "paper: the paper's method (4.2); joint: our least squares")
+        .choices({"paper", "joint"});
+    addProperty<int>("loops", 5, "the redundancy N (odd: the per-axis median is one of the samples)").range(1, 999);
+    addProperty<int>("poses_per_loop", 2, "joint method: different poses per loop (its unknowns need them)")
+        .range(1, 10);
+    addProperty<double>("reapproach_deg", 10.0, "paper method: the arm comes to the pose anew from this far (joint 4)")
+        .range(0.0, 45.0);
+    addProperty<std::string>("replay", "", "a saved calibration file: replay its samples instead (no robot)").path();
+    addProperty<std::string>("description", "", "robot description YAML (empty: config/friend/robot.yaml)").path();
+  }
+
+  void process(imagenets::Context& ctx) override {
+    auto plan = boost::make_shared<imagenets::CalibrationPlan>();
+    plan->method = ctx.property<std::string>("method");
+    plan->loops = ctx.property<int>("loops");
+    plan->replay_file = ctx.property<std::string>("replay");
+    if (!plan->replay_file.empty()) {
+      try {
+        plan->samples = static_cast<int>(loadCalibration(plan->replay_file).result.samples.size());
+      } catch (const std::exception& e) {
+        throw imagenets::BlockError(std::string("property 'replay': ") + e.what());
+      }
+      if (plan->samples == 0) throw imagenets::BlockError("property 'replay': " + plan->replay_file + " holds no samples");
+    } else {
+      if (plan->loops % 2 == 0) {
+        throw imagenets::BlockError("property 'loops': redundancy must be odd and >= 1 (the per-axis median needs a "
+                                    "middle value), got " + std::to_string(plan->loops));
+      }
+      const RobotModel& model = robotModel(ctx.property<std::string>("description"));
+      const auto& d = model.description();
+      plan->samples = plan->loops * (plan->method == "joint" ? ctx.property<int>("poses_per_loop") : 1);
+      const double away = ctx.property<double>("reapproach_deg") * M_PI / 180.0;
+      for (const auto& pose : calibrationPoses(model, plan->samples, plan->method)) {
+        sensor_msgs::JointState arm, head, approach;
+        arm.name = approach.name = d.arm.names();
+        head.name = d.head.names();
+        arm.position = approach.position = pose.arm;
+        head.position = pose.head;
+        // The paper's procedure comes to the calibration pose anew every loop (the first too).
+        if (plan->method == "paper" && approach.position.size() > 3) approach.position[3] -= away;
+        plan->arm.push_back(arm);
+        plan->head.push_back(head);
+        plan->arm_approach.push_back(approach);
+      }
+    }
+    auto count = boost::make_shared<std_msgs::Int32>();
+    count->data = plan->samples;
+    ctx.output("plan", plan);
+    ctx.output("samples", count);
+  }
+};
+
+}  // namespace blocks
+}  // namespace friend_calibration
+
+IMAGENETS_REGISTER_BLOCK(friend_calibration::blocks::CalibrationPlan, "imagenets/CalibrationPlan", "calibration",
+                         "FRIEND calibration plan: method, sample count, the pose of each sample or a replay file");

@@ -1,0 +1,52 @@
+#include <gtest/gtest.h>
+#include <imagenets/CalibrationPlan.h>
+#include <std_msgs/Int32.h>
+
+#include "friend_calibration/calibration.h"
+#include "imagenets/blocks/block_harness.h"
+
+using imagenets::blocks::BlockHarness;
+using namespace friend_calibration;
+
+namespace {
+RobotModel nominal() { return RobotModel(robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath())); }
+}  // namespace
+
+TEST(CalibrationPlan, JointMethodVisitsTheLibrarysPosesPerLoop) {
+  BlockHarness h("imagenets/CalibrationPlan");
+  h.set("method", std::string("joint")).set("loops", 3).set("poses_per_loop", 2);
+  h.run();
+  const auto plan = h.output<imagenets::CalibrationPlan>("plan");
+  ASSERT_TRUE(plan);
+  EXPECT_EQ(plan->samples, 6);
+  EXPECT_EQ(h.output<std_msgs::Int32>("samples")->data, 6);
+  const auto poses = calibrationPoses(nominal(), 6, "joint");
+  ASSERT_EQ(plan->arm.size(), 6u);
+  for (size_t k = 0; k < 6; ++k) {
+    EXPECT_EQ(plan->arm[k].position, poses[k].arm);
+    EXPECT_EQ(plan->head[k].position, poses[k].head);
+    EXPECT_EQ(plan->arm_approach[k].position, poses[k].arm);  // no re-approach
+    EXPECT_EQ(plan->arm[k].name, nominal().description().arm.names());
+  }
+}
+
+TEST(CalibrationPlan, PaperMethodReapproachesTheSamePoseAndNeedsOddLoops) {
+  BlockHarness h("imagenets/CalibrationPlan");
+  h.set("method", std::string("paper")).set("loops", 3);
+  h.run();
+  const auto plan = h.output<imagenets::CalibrationPlan>("plan");
+  EXPECT_EQ(plan->samples, 3);
+  EXPECT_EQ(plan->arm[0].position, plan->arm[2].position);
+  EXPECT_NEAR(plan->arm[1].position[3] - plan->arm_approach[1].position[3], 10 * M_PI / 180, 1e-12);
+  BlockHarness even("imagenets/CalibrationPlan");
+  even.set("loops", 4);
+  EXPECT_NE(even.runError().find("property 'loops': redundancy must be odd"), std::string::npos);
+}
+
+TEST(CalibrationPlan, AReplayPlanCountsTheStoredSamplesAndNamesABadFile) {
+  BlockHarness h("imagenets/CalibrationPlan");
+  h.set("replay", std::string("/nonexistent/pth_fixed_point.yaml"));
+  const std::string error = h.runError();
+  EXPECT_NE(error.find("property 'replay'"), std::string::npos) << error;
+  EXPECT_NE(error.find("/nonexistent/pth_fixed_point.yaml"), std::string::npos) << error;
+}

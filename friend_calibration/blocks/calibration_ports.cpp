@@ -1,0 +1,33 @@
+#include "calibration_ports.h"
+
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "imagenets/blocks/robot.h"
+
+namespace friend_calibration {
+namespace blocks {
+
+const RobotModel& robotModel(const std::string& path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::unique_ptr<RobotModel>> cache;
+  const auto& description = imagenets::blocks::robotDescription(path);
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& model = cache[description.source];
+  if (!model) model = std::make_unique<RobotModel>(description);
+  return *model;
+}
+
+int sampleIndex(const imagenets::Context& ctx, const imagenets::CalibrationPlan& plan) {
+  const auto repetition = ctx.input<std_msgs::Int32>("repetition");
+  const int k = repetition ? repetition->data : ctx.property<int>("index");
+  if (k < 0 || k >= plan.samples) {
+    throw imagenets::BlockError(std::string(repetition ? "input 'repetition'" : "property 'index'") + ": sample " +
+                                std::to_string(k) + " of a plan of " + std::to_string(plan.samples) + " samples");
+  }
+  return k;
+}
+
+}  // namespace blocks
+}  // namespace friend_calibration

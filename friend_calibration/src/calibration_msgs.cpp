@@ -1,0 +1,104 @@
+#include "friend_calibration/calibration_msgs.h"
+
+#include "imagenets/vision/frames.h"
+
+namespace friend_calibration {
+namespace frames = imagenets::frames;
+
+imagenets::MarkerObservation toMsg(const MarkerObservation& o) {
+  imagenets::MarkerObservation m;
+  m.found = o.found;
+  m.pose = frames::toPose(o.pose);
+  m.confidence = o.confidence;
+  m.threshold = o.threshold;
+  m.reprojection_error = o.reprojection_error;
+  for (const auto& p : o.points) m.points.push_back(frames::toPointMsg(Eigen::Vector3d(p.x(), p.y(), 0)));
+  m.reason = o.reason;
+  return m;
+}
+
+MarkerObservation fromMsg(const imagenets::MarkerObservation& m) {
+  MarkerObservation o;
+  o.found = m.found;
+  o.pose = frames::toIsometry(m.pose, "marker observation pose");
+  o.confidence = m.confidence;
+  o.threshold = m.threshold;
+  o.reprojection_error = m.reprojection_error;
+  for (const auto& p : m.points) o.points.emplace_back(p.x, p.y);
+  o.reason = m.reason;
+  return o;
+}
+
+imagenets::CalibrationSample toMsg(const Sample& s) {
+  imagenets::CalibrationSample m;
+  m.stamp = s.stamp;
+  m.arm_q = s.arm_q;
+  m.head_q = s.head_q;
+  m.left = toMsg(s.left);
+  m.right = toMsg(s.right);
+  m.valid = s.valid;
+  m.reason = s.reason;
+  m.fusion = s.fusion;
+  m.marker_in_left = frames::toPose(s.marker_in_left);
+  m.fixed_point = frames::toPose(s.fixed_point);
+  return m;
+}
+
+Sample fromMsg(const imagenets::CalibrationSample& m) {
+  Sample s;
+  s.stamp = m.stamp;
+  s.arm_q = m.arm_q;
+  s.head_q = m.head_q;
+  s.left = fromMsg(m.left);
+  s.right = fromMsg(m.right);
+  s.valid = m.valid;
+  s.reason = m.reason;
+  s.fusion = m.fusion;
+  s.marker_in_left = frames::toIsometry(m.marker_in_left, "sample marker_in_left");
+  s.fixed_point = frames::toIsometry(m.fixed_point, "sample fixed_point");
+  return s;
+}
+
+imagenets::CalibrationResult toMsg(const Result& r, const std::string& base, const std::string& child) {
+  imagenets::CalibrationResult m;
+  m.success = r.success;
+  m.message = r.message;
+  m.method = r.method;
+  m.fixed_point = frames::toTransformStamped(r.fixed_point, base, child, ros::Time());
+  m.marker_offset = frames::toPose(r.marker_offset);
+  m.arm_joint_offsets = r.arm_joint_offsets;
+  m.head_joint_offsets = r.head_joint_offsets;
+  m.std_dev_translation = frames::toVector3Msg(r.std_translation);
+  m.std_dev_rotation = frames::toVector3Msg(r.std_rotation);
+  m.used = r.used;
+  m.rejected = r.rejected;
+  m.rejection_reasons = r.rejection_reasons;
+  m.residual_translation = r.residual_translation;
+  m.residual_rotation = r.residual_rotation;
+  m.compute_time = r.compute_time;
+  for (const auto& s : r.samples) m.samples.push_back(toMsg(s));
+  return m;
+}
+
+Result fromMsg(const imagenets::CalibrationResult& m) {
+  Result r;
+  r.success = m.success;
+  r.message = m.message;
+  r.method = m.method;
+  r.fixed_point = frames::toIsometry(m.fixed_point.transform, "result fixed_point");
+  r.marker_offset = frames::toIsometry(m.marker_offset, "result marker_offset");
+  r.arm_joint_offsets = m.arm_joint_offsets;
+  r.head_joint_offsets = m.head_joint_offsets;
+  r.std_translation = frames::toVector(m.std_dev_translation, "std_dev_translation");
+  r.std_rotation = frames::toVector(m.std_dev_rotation, "std_dev_rotation");
+  r.used = m.used;
+  r.rejected = m.rejected;
+  r.rejection_reasons = m.rejection_reasons;
+  r.residual_translation = m.residual_translation;
+  r.residual_rotation = m.residual_rotation;
+  r.compute_time = m.compute_time;
+  for (const auto& s : m.samples) r.samples.push_back(fromMsg(s));
+  return r;
+}
+
+}  // namespace friend_calibration
