@@ -35,6 +35,9 @@ class SquareMarkerDetector : public Block {
         .range(0.0, 1.0);
     addProperty<int>("refine_passes", 2, "sub-pixel edge refinement passes on the gray image (0: pixel corners)")
         .range(0, 10);
+    addProperty<double>("min_inner_side_px", 0.0,
+                        "inner corners join the pose fit only when the inner square's sides are this long (px; 0: always)")
+        .range(0.0, 10000.0);
   }
 
   void process(Context& ctx) override {
@@ -55,6 +58,7 @@ class SquareMarkerDetector : public Block {
     marker::DetectorOptions options;
     options.min_confidence = ctx.property<double>("min_confidence");
     options.refine_passes = ctx.property<int>("refine_passes");
+    options.min_inner_side_px = ctx.property<double>("min_inner_side_px");
     Eigen::Isometry3d hint;
     if (const auto pose_hint = ctx.input<geometry_msgs::PoseStamped>("pose_hint")) {
       hint = marker::fromPoseMsg(pose_hint->pose);

@@ -376,21 +376,28 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   std::vector<cv::Point2d> plane_inner, inner_norm;
   for (int j = 4; j < 8; ++j) plane_inner.emplace_back(defined[j].x, defined[j].y);
   cv::perspectiveTransform(plane_inner, inner_norm, H);
+  bool inner_refined = true;
+  double inner_side_px = 0;  // the shortest side of the inner square in the image
   {
     std::vector<cv::Point2d> inner_px = distort(inner_norm, camera), refined_inner;
-    bool ok = true;
-    for (int pass = 0; pass < options.refine_passes && ok; ++pass) {
-      ok = refineQuad(gray, camera, inner_px, pass == 0 ? 2.5 : 1.5, &refined_inner);
-      if (ok) inner_px = distort(refined_inner, camera), inner_norm = refined_inner;
+    for (int pass = 0; pass < options.refine_passes && inner_refined; ++pass) {
+      inner_refined = refineQuad(gray, camera, inner_px, pass == 0 ? 2.5 : 1.5, &refined_inner);
+      if (inner_refined) inner_px = distort(refined_inner, camera), inner_norm = refined_inner;
     }
+    inner_side_px = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 4; ++k) inner_side_px = std::min(inner_side_px, cv::norm(inner_px[k] - inner_px[(k + 1) % 4]));
   }
+  // A small inner square (far away, seen steeply) lies among the pattern's cells: its blurred edges
+  // have no bright plateau and its corners are off by up to a pixel. Then only the outer corners fit.
+  const bool use_inner =
+      options.min_inner_side_px <= 0 || (inner_refined && inner_side_px >= options.min_inner_side_px);
 
   std::vector<cv::Point2d> image_norm(outer);
   image_norm.insert(image_norm.end(), inner_norm.begin(), inner_norm.end());
   // The pose fit: the inner corners repeated `inner_weight` times (a weighted least squares).
   std::vector<cv::Point3d> fit_object(defined.begin(), defined.begin() + 4);
   std::vector<cv::Point2d> fit_image(outer);
-  for (int w = 0; w < std::max(1, options.inner_weight); ++w) {
+  for (int w = 0; use_inner && w < std::max(1, options.inner_weight); ++w) {
     fit_object.insert(fit_object.end(), defined.begin() + 4, defined.end());
     fit_image.insert(fit_image.end(), inner_norm.begin(), inner_norm.end());
   }
@@ -405,8 +412,10 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
     cv::Mat rvec = rvecs[s].clone(), tvec = tvecs[s].clone();
     cv::solvePnPRefineLM(fit_object, fit_image, I, cv::noArray(), rvec, tvec,
                          cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 50, 1e-12));
+    // RMS over the points of the fit (each once): the outer corners alone when the inner ones were left out.
+    const std::vector<cv::Point3d> fitted(defined.begin(), defined.begin() + (use_inner ? 8 : 4));
     std::vector<cv::Point2d> reproj;
-    cv::projectPoints(defined, rvec, tvec, I, cv::noArray(), reproj);
+    cv::projectPoints(fitted, rvec, tvec, I, cv::noArray(), reproj);
     double sq = 0;
     for (size_t i = 0; i < reproj.size(); ++i) {
       const cv::Point2d e = reproj[i] - image_norm[i];

@@ -32,13 +32,13 @@ struct Shot {
 };
 
 Shot shoot(const render::Renderer& r, const MarkerDescription& m, const Eigen::Isometry3d& pose, int threshold = 60,
-           double illumination = 1.0) {
+           double illumination = 1.0, double blur = 0.7) {
   render::Scene scene;
   scene.planes.push_back(marker::markerPlane(m, pose));
   scene.light.direction = Eigen::Vector3d(0.3, 0.4, 1.0);
   render::RenderOptions o;
   o.illumination = illumination;
-  o.blur_sigma = 0.7;
+  o.blur_sigma = blur;
   o.noise_sigma = 2.0;
   o.seed = 11;
   Shot s;
@@ -96,6 +96,35 @@ TEST(MarkerDetector, CornersDoNotMoveWithTheThreshold) {
   const Detection b = marker::detect(hi.gray, hi.binary, friendCamera(), gripper());
   ASSERT_TRUE(a.found && b.found);
   for (int i = 0; i < 8; ++i) EXPECT_LT(cv::norm(a.points[i] - b.points[i]), 0.05) << "point " << i;
+}
+
+TEST(MarkerDetector, ASmallInnerSquareIsLeftOutOfThePoseFit) {
+  // 1.26 m away, seen at 70 deg, blur 1.2 px: the inner square is ~11 px high and lies among the
+  // pattern's cells, its corners are off by up to a pixel and (counted twice) spoil the pose.
+  const render::Renderer r(friendCamera(), 3);
+  const Eigen::Isometry3d truth = render::lookAtOriginPose(1.256, 105 * kDeg, 70 * kDeg);
+  const Shot s = shoot(r, gripper(), truth, 60, 1.0, 1.2);
+  marker::DetectorOptions with_inner, outer_only;
+  with_inner.refine_passes = outer_only.refine_passes = 4;
+  outer_only.min_inner_side_px = 50;
+  const Detection a = marker::detect(s.gray, s.binary, friendCamera(), gripper(), with_inner);
+  const Detection b = marker::detect(s.gray, s.binary, friendCamera(), gripper(), outer_only);
+  ASSERT_TRUE(a.found);
+  ASSERT_TRUE(b.found);
+  EXPECT_LT(positionErrorMm(b, truth), 1.0);
+  EXPECT_LT(positionErrorMm(b, truth), 0.5 * positionErrorMm(a, truth));
+  EXPECT_LT(b.reprojection_error, a.reprojection_error);  // over the fitted (outer) corners only
+  // The inner corners are still reported.
+  EXPECT_GT(cv::norm(b.points[4] - b.points[6]), 5.0);
+  // Close and head-on the inner square is large: the same option keeps it in the fit.
+  const Eigen::Isometry3d near = render::lookAtOriginPose(0.6, 0, 0);
+  const Shot n = shoot(r, gripper(), near);
+  const Detection c = marker::detect(n.gray, n.binary, friendCamera(), gripper(), outer_only);
+  marker::DetectorOptions inner_always = outer_only;
+  inner_always.min_inner_side_px = 0;
+  const Detection e = marker::detect(n.gray, n.binary, friendCamera(), gripper(), inner_always);
+  ASSERT_TRUE(c.found);
+  EXPECT_EQ(c.pose.translation(), e.pose.translation());
 }
 
 TEST(MarkerDetector, PatternFixesTheOrientation) {

@@ -2,7 +2,6 @@
 #include "marker_study/marker_study.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -26,6 +25,10 @@
 #include "marker_study/marker_net.h"
 #include "imagenets/vision/marker_scene.h"
 #include "imagenets/vision/read_camera_info.h"
+#include "imagenets/executor.h"
+#include "imagenets/vision/frames.h"
+#include <geometry_msgs/PoseStamped.h>
+#include <imagenets/MarkerDetection.h>
 
 namespace imagenets {
 namespace marker {
@@ -78,7 +81,7 @@ const std::vector<StudyCondition>& studyConditions() {
     dark.illumination_min = 0.15;
     dark.illumination_max = 0.5;
     dark.background = 0.1;
-    StudyCondition& hard = add("hard");  // everything at once
+    StudyCondition& hard = add("combined");  // everything at once
     hard.distance_max = 1.5;
     hard.blur_max = 2.0;
     hard.noise_max = 6.0;
@@ -175,9 +178,10 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
   feedback_mode.parallel = false;  // the views run in parallel already
   // Built once here so a bad net file fails before any thread starts.
   { MarkerDetectionNet check(config.net, config.marker, feedback_mode, 1); }
+  if (!config.calibration_net.empty()) Executor::loadFile(config.calibration_net);
 
   const std::string fixed_name = "fixed" + std::to_string(config.fixed_threshold);
-  std::vector<std::array<StudyRow, 3>> results(views.size());
+  std::vector<std::vector<StudyRow>> results(views.size());
   std::atomic<size_t> next{0};
   std::atomic<int> done{0};
   std::mutex progress_mutex;
@@ -186,6 +190,8 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
     try {
       MarkerDetectionNet fixed_net(config.net, config.marker, fixed_mode, 1);
       MarkerDetectionNet feedback_net(config.net, config.marker, feedback_mode, 1);
+      const std::unique_ptr<Executor> calibration_net =
+          config.calibration_net.empty() ? nullptr : Executor::loadFile(config.calibration_net);
       const AprilTagDetector april_detector(april);
       for (size_t i; (i = next++) < views.size();) {
         const View& v = views[i];
@@ -223,9 +229,8 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
           r.position_error_mm = 1000.0 * (pose.translation() - truth.translation()).norm();
           r.orientation_error_deg = rotationAngle(pose, truth) / kDeg;
         };
-        int m = 0;
         for (MarkerDetectionNet* net : {&fixed_net, &feedback_net}) {
-          StudyRow r = row(m == 0 ? fixed_name : "detect");
+          StudyRow r = row(net == &fixed_net ? fixed_name : "detect");
           const MarkerDetectionNet::Result res = net->run(msg, info);
           if (!res.error.empty()) throw std::runtime_error(res.error);
           r.ms = res.ms;
@@ -234,7 +239,31 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
             r.threshold = res.detection->threshold;
             score(r, fromPoseMsg(res.detection->pose));
           }
-          results[i][m++] = r;
+          results[i].push_back(r);
+        }
+        if (calibration_net) {
+          StudyRow r = row("calibration");
+          auto predicted = boost::make_shared<geometry_msgs::PoseStamped>();
+          predicted->header = header;
+          predicted->pose = frames::toPose(truth);
+          const auto t0 = std::chrono::steady_clock::now();
+          calibration_net->setInput("image.value", msg);
+          calibration_net->setInput("camera_info.value", sensor_msgs::CameraInfoConstPtr(info));
+          calibration_net->setInput("predicted_pose.value", geometry_msgs::PoseStampedConstPtr(predicted));
+          const RunReport report = calibration_net->run();
+          r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+          const auto trace = calibration_net->output<FeedbackTrace>("threshold.feedback_trace");
+          const auto detection = calibration_net->output<imagenets::MarkerDetection>("detector.detection");
+          // No threshold of the search found it: "no valid candidate", not an error.
+          if (!report.ok() && !(trace && !trace->found)) {
+            throw std::runtime_error(config.calibration_net + ": " + report.failed.front());
+          }
+          r.found = report.ok() && detection && detection->found;
+          if (r.found) {
+            r.threshold = trace->chosen_value;
+            score(r, fromPoseMsg(detection->pose));
+          }
+          results[i].push_back(r);
         }
         StudyRow r = row("apriltag");
         const auto t0 = std::chrono::steady_clock::now();
@@ -242,7 +271,7 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
         r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         r.found = d.found;
         if (d.found) score(r, d.pose);
-        results[i][2] = r;
+        results[i].push_back(r);
         const int n = ++done;
         if (progress) {
           std::lock_guard<std::mutex> lock(progress_mutex);
@@ -316,11 +345,12 @@ const StudySummaryRow* findSummary(const std::vector<StudySummaryRow>& summary, 
 std::vector<TargetCheck> checkTargets(const std::vector<StudySummaryRow>& summary) {
   std::vector<TargetCheck> out;
   for (const auto& s : summary) {
-    if (s.method != "detect") continue;
+    if (s.method != "detect" && s.method != "calibration") continue;
     const StudySummaryRow* april = findSummary(summary, s.condition, "apriltag");
     if (!april) continue;
     TargetCheck t;
     t.condition = s.condition;
+    t.method = s.method;
     t.rate_ok = s.found * april->images >= april->found * s.images;  // rates compared without rounding
     // Nothing found by libapriltag leaves no median to halve: then any median of ours counts.
     t.median_ok = s.found > 0 && (april->found == 0 || s.median_mm <= 0.5 * april->median_mm);
@@ -420,21 +450,21 @@ std::string toMarkdown(const std::vector<StudySummaryRow>& summary, const StudyC
 
 std::string sideBySideMarkdown(const std::vector<StudySummaryRow>& summary) {
   std::ostringstream os;
-  os << "| condition | detected: detect / apriltag | median mm: detect / apriltag | p95 mm: detect / apriltag | "
+  os << "| condition | ours | detected: ours / apriltag | median mm: ours / apriltag | p95 mm: ours / apriltag | "
         "rate >= apriltag | median <= apriltag / 2 |\n";
-  os << "|---|---|---|---|---|---|\n";
+  os << "|---|---|---|---|---|---|---|\n";
   os << std::fixed;
   for (const auto& t : checkTargets(summary)) {
-    const StudySummaryRow& d = *findSummary(summary, t.condition, "detect");
+    const StudySummaryRow& d = *findSummary(summary, t.condition, t.method);
     const StudySummaryRow& a = *findSummary(summary, t.condition, "apriltag");
     auto rate = [](const StudySummaryRow& s) {
       std::ostringstream r;
       r << std::fixed << std::setprecision(1) << 100.0 * s.found / std::max(1, s.images) << " %";
       return r.str();
     };
-    os << "| " << t.condition << " | " << rate(d) << " / " << rate(a) << " | " << std::setprecision(3) << d.median_mm
-       << " / " << a.median_mm << " | " << d.p95_mm << " / " << a.p95_mm << " | " << (t.rate_ok ? "yes" : "NO")
-       << " | " << (t.median_ok ? "yes" : "NO") << " |\n";
+    os << "| " << t.condition << " | " << t.method << " | " << rate(d) << " / " << rate(a) << " | "
+       << std::setprecision(3) << d.median_mm << " / " << a.median_mm << " | " << d.p95_mm << " / " << a.p95_mm
+       << " | " << (t.rate_ok ? "yes" : "NO") << " | " << (t.median_ok ? "yes" : "NO") << " |\n";
   }
   return os.str();
 }

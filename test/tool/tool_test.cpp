@@ -128,6 +128,31 @@ TEST(Tool, RunWritesTheFeedbackTrace) {
   EXPECT_TRUE(boost::filesystem::exists(dir + "/threshold.feedback_trace.png"));
 }
 
+TEST(Tool, DetectByDefaultFindsTheMarkerInADimSceneThatThePapersRangeMisses) {
+  // Illumination 18 %, dark wall (issue 15): the paper is darker than 40, so every threshold of the
+  // paper's 40..80 merges the black border with the margin and the wall (docs/marker-study.md).
+  const std::string dir = temp("dim_scene");
+  Result r = tool("run config/nets/marker_image_generation.yaml --quiet --set render.illumination=0.18 "
+                  "--set render.background=0.1 --set render.tilt=0 --set render.supersampling=2 --output-dir " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string image = dir + "/render.image.png";
+  const std::string common = "detect --marker config/markers/gripper.yaml --camera config/cameras/friend_stereo_left.yaml ";
+  r = tool(common + "--feedback 40:80:1 " + image, true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "found: false");
+  r = tool(common + image, true);  // no options: the net's own feedback (Otsu first, 5..250)
+  EXPECT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "found: true");
+  const size_t at = r.output.find("threshold: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_LT(std::stoi(r.output.substr(at + 11)), 40) << r.output;
+  expectContains(r.output, "translation: [");
+  // --coarse-to-fine orders a --feedback range; alone it would silently do nothing.
+  r = tool(common + "--coarse-to-fine " + image);
+  EXPECT_EQ(r.status, 2) << r.output;
+  expectContains(r.output, "--coarse-to-fine orders a --feedback FROM:TO:STEP range");
+}
+
 TEST(Tool, GraphDrawsAnSvg) {
   const std::string svg = temp("net.svg");
   Result r = tool("graph config/nets/feedback_threshold.yaml -o " + svg);

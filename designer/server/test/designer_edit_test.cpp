@@ -198,9 +198,10 @@ TEST_F(DesignerTest, SavingAnUnchangedHandWrittenNetChangesOnlyThePositions) {
   const std::string changed = readFile(file);
   expectContains(changed, "min_confidence: 0.6");
   expectContains(changed, "Robust 2D marker detection");
-  expectContains(changed, "feedback: {property: threshold, from: 40, to: 80, step: 1, score: detector.confidence");
+  expectContains(changed, "feedback: {property: threshold, from: 5, to: 250, step: 1, score: detector.confidence");
+  expectContains(changed, "initial: otsu.threshold, good_enough: 0.9, coarse_step: 15, fine_radius: 7}");
   auto exec = Executor::loadFile(file);
-  EXPECT_EQ(exec->net().nodes().size(), 5u);
+  EXPECT_EQ(exec->net().nodes().size(), 6u);
 }
 
 TEST_F(DesignerTest, EveryConfigNetRoundTripsThroughTheDocument) {

@@ -54,11 +54,14 @@ struct DetectorOptions {
   double min_confidence = 0.5;  // below: found = false
   double min_side_px = 12.0;    // candidate quads with a shorter side are ignored
   int refine_passes = 2;        // sub-pixel edge refinement passes on the gray image (0 = none)
-  int pattern_cells = 32;
+  int pattern_cells = 32;       // resolution of the rectified pattern compared with the marker's
   // Weight of the 4 inner corners in the pose fit relative to the outer ones. 2 (the ratio of
   // their distances from the centre) cancels a common shift of every edge towards the dark side,
   // as over-exposure (clipped white) causes: the outer square shrinks, the inner one grows.
-  int inner_weight = 2;       // resolution of the rectified pattern compared with the marker's
+  int inner_weight = 2;
+  // The inner corners take part in the pose fit only when every side of the inner square is at
+  // least this long in the image (pixels) and their edges were located; 0: always.
+  double min_inner_side_px = 0;
   // Optional pose hint (e.g. the previous frame's pose): when both IPPE solutions fit the points
   // about equally well (error ratio < ambiguity_ratio), the one closer to the hint is taken.
   const Eigen::Isometry3d* pose_hint = nullptr;
