@@ -252,21 +252,25 @@ void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
 imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::Request& req, const Hooks& hooks) {
   imagenets::Calibrate::Response res;
   const auto& base = model_.description().base_frame;
-  bool expected = false;
-  if (!busy_.compare_exchange_strong(expected, true)) {
-    res.success = false;
-    res.message = "rejected: a calibration is already running (" + busy_with_ + "); try again when it has finished";
-    return res;
+  const int n = req.redundancy > 0 ? req.redundancy : default_redundancy_;
+  const std::string method = req.method.empty() ? default_method_ : req.method;
+  {
+    // One lock for the flag and its description: triggers arrive on several spinner threads at once.
+    std::lock_guard<std::mutex> lock(busy_mutex_);
+    if (busy_) {
+      res.success = false;
+      res.message = "rejected: a calibration is already running (" + busy_with_ + "); try again when it has finished";
+      return res;
+    }
+    busy_ = true;
+    busy_with_ = (req.replay.empty() ? "redundancy " + std::to_string(n) : "replay of " + req.replay) + ", method " +
+                 method + ", started " + utcStamp(true);
   }
   struct Release {
     std::atomic<bool>& b;
     ~Release() { b = false; }
   } release{busy_};
   const auto start = std::chrono::steady_clock::now();
-  const int n = req.redundancy > 0 ? req.redundancy : default_redundancy_;
-  const std::string method = req.method.empty() ? default_method_ : req.method;
-  busy_with_ = (req.replay.empty() ? "redundancy " + std::to_string(n) : "replay of " + req.replay) + ", method " +
-               method + ", started " + utcStamp(true);
   try {
     if (method != "paper" && method != "joint") {
       throw std::runtime_error("unknown method '" + method + "' (expected 'paper' or 'joint')");
@@ -338,16 +342,24 @@ void CalibrationNode::moveBoth(Motion& motion, const CalibrationPose& pose, int 
   arm.sendGoal(arm_goal);
   head.sendGoal(head_goal);
   bool cancelled = false;
+  MoveClient* lost = nullptr;  // a server that went away mid-motion (the robot's driver stopped)
   const bool finished = motion.queue.waitUntil(
       [&] {
         cancelled = hooks.cancelled && hooks.cancelled();
-        return cancelled || (arm.getState().isDone() && head.getState().isDone());
+        for (auto* c : {&arm, &head}) {
+          if (!c->getState().isDone() && !c->isServerConnected()) lost = c;
+        }
+        return cancelled || lost || (arm.getState().isDone() && head.getState().isDone());
       },
       motion_timeout_);
-  if (cancelled || !finished) {
+  if (cancelled || lost || !finished) {
     arm.cancelGoal();
     head.cancelGoal();
     if (cancelled) throw std::runtime_error("cancelled during the motion of sample " + std::to_string(sample + 1));
+    if (lost) {
+      throw std::runtime_error(std::string(lost == &arm ? "arm" : "head") + " action server lost during the motion of sample " +
+                               std::to_string(sample + 1) + " (the robot's driver / friend_sim stopped?)");
+    }
     throw std::runtime_error("motion of sample " + std::to_string(sample + 1) + " did not finish within " +
                              std::to_string(motion_timeout_) + " s");
   }

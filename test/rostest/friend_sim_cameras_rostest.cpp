@@ -179,6 +179,25 @@ TEST_F(FriendSimCameras, DroppedFramesAndReflectionsFollowTheFaultParameters) {
   EXPECT_LT(rows_changed, clean.rows / 2);
 }
 
+// The camera goes silent while faults/camera_silent is true (a pulled cable), and comes back.
+TEST_F(FriendSimCameras, SilentCameraPublishesNothingUntilTheFaultEnds) {
+  ros::NodeHandle sim("friend_sim");
+  auto trigger = [](std_srvs::Trigger* t) { return ros::service::call("stereo/trigger", *t); };
+  sim.setParam("faults/camera_silent", true);
+  std_srvs::Trigger t;
+  // The simulator reads its parameters through a cache: wait until the change has reached it.
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (trigger(&t) && t.response.success && ros::WallTime::now() < deadline) ros::WallDuration(0.05).sleep();
+  ASSERT_FALSE(t.response.success) << "the trigger still succeeds with the camera silent";
+  EXPECT_NE(t.response.message.find("silent"), std::string::npos) << t.response.message;
+  sensor_msgs::ImageConstPtr l, r;
+  EXPECT_FALSE(grab(&l, &r, 1.0)) << "images published although the camera is silent";
+  sim.setParam("faults/camera_silent", false);
+  bool back = false;
+  for (int i = 0; i < 60 && !back; ++i) back = grab(&l, &r, 0.5);
+  EXPECT_TRUE(back) << "no images after the camera_silent fault ended";
+}
+
 TEST_F(FriendSimCameras, IlluminationIsSettableLive) {
   ros::NodeHandle sim("friend_sim");
   sensor_msgs::ImageConstPtr l, r;

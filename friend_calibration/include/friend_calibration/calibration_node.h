@@ -128,6 +128,7 @@ class CalibrationNode {
   std::mutex calibration_mutex_;  // guards current_ (the published calibration)
   bool have_calibration_ = false;
   Eigen::Isometry3d current_ = Eigen::Isometry3d::Identity();
+  std::mutex busy_mutex_;  // guards busy_with_, and busy_ being set
   std::atomic<bool> busy_{false};
   double detection_time_ = 0;  // s, robust detection of the running calibration (both images)
   std::string busy_with_;

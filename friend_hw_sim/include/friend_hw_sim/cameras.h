@@ -13,7 +13,9 @@
 //   camera/color (false: mono8), camera/supersampling (at start, 2), scene (file, at start),
 //   marker (marker description YAML, at start; default config/markers/gripper.yaml),
 //   faults/drop_frame_probability, faults/corrupt_frame_probability,
-//   faults/reflection_probability (a specular highlight near the marker: outlier detections).
+//   faults/reflection_probability (a specular highlight near the marker: outlier detections),
+//   faults/camera_silent (bool: no camera publishes anything, triggers answer failure; e.g. a
+//   cable pulled for a while).
 #pragma once
 
 #include <atomic>
@@ -93,6 +95,8 @@ class CameraSim {
   bool triggerStereo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool triggerHand(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   imagenets::render::RenderOptions options(std::uint64_t seed);
+  // faults/camera_silent is set.
+  bool silent();
   // Applies the configured faults; returns false when the frame is dropped.
   bool applyFaults(cv::Mat& image, const Camera& cam, const Eigen::Isometry3d& camera_in_base,
                    const Eigen::Isometry3d& marker_in_base);
