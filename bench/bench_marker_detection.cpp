@@ -13,10 +13,10 @@
 #include <cv_bridge/cv_bridge.h>
 #include <opencv2/imgproc.hpp>
 
-#include "imagenets/blocks/apriltag_marker.h"
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/marker_net.h"
-#include "imagenets/blocks/marker_scene.h"
+#include "imagenets/vision/apriltag_marker.h"
+#include "imagenets/vision/marker.h"
+#include "marker_study/marker_net.h"
+#include "imagenets/vision/marker_scene.h"
 
 using namespace imagenets;
 using Clock = std::chrono::steady_clock;

@@ -10,7 +10,7 @@
 
 #include "friend_hw_sim/true_robot.h"
 #include "friend_hw_sim/cameras.h"
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 #include "friend_hw_sim/joint_trajectory.h"
 #include "robot_description/robot_model.h"
 

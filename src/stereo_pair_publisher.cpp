@@ -12,7 +12,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "imagenets/blocks/read_camera_info.h"
+#include "imagenets/vision/read_camera_info.h"
 #include <sensor_msgs/Image.h>
 
 namespace {
@@ -34,7 +34,7 @@ bool load(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::string& side, Si
     return false;
   }
   try {
-    out.info.reset(new sensor_msgs::CameraInfo(imagenets::blocks::readCameraInfo(info_path)));
+    out.info.reset(new sensor_msgs::CameraInfo(imagenets::readCameraInfo(info_path)));
   } catch (const std::exception& e) {
     ROS_FATAL("parameter ~%s_camera_info: %s", side.c_str(), e.what());
     return false;

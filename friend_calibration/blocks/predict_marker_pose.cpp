@@ -5,7 +5,7 @@
 #include <sensor_msgs/JointState.h>
 
 #include "calibration_ports.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include "imagenets/blocks/robot.h"
 #include "imagenets/register_block.h"
 

@@ -4,7 +4,7 @@
 
 #include "friend_calibration/calibration.h"
 #include "imagenets/blocks/block_harness.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 
 using imagenets::blocks::BlockHarness;
 using namespace friend_calibration;

@@ -11,7 +11,7 @@
 
 #include "calibration_ports.h"
 #include "friend_calibration/calibration_msgs.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include "imagenets/register_block.h"
 
 namespace friend_calibration {

@@ -9,7 +9,7 @@
 
 #include <Eigen/Dense>
 
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 
 namespace friend_calibration {
 namespace {

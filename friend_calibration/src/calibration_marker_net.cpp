@@ -7,7 +7,8 @@
 #include <imagenets/MarkerDetection.h>
 
 #include "robot_description/robot_model.h"
-#include "imagenets/blocks/marker_msgs.h"
+#include "imagenets/vision/frames.h"
+#include "imagenets/vision/marker_msgs.h"
 #include "imagenets/executor.h"
 
 namespace friend_calibration {
@@ -39,7 +40,7 @@ MarkerObservation CalibrationMarkerNet::detect(const sensor_msgs::ImageConstPtr&
   if (predicted) {
     auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
     pose->header = info.header;
-    pose->pose = imagenets::marker::toPoseMsg(*predicted);
+    pose->pose = imagenets::frames::toPose(*predicted);
     executor_->setInput("predicted_pose.value", boost::shared_ptr<const geometry_msgs::PoseStamped>(pose));
   } else {
     executor_->setInput("predicted_pose.value", imagenets::Value());

@@ -1,6 +1,6 @@
 #include "friend_calibration/calibration_msgs.h"
 
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 
 namespace friend_calibration {
 namespace frames = imagenets::frames;

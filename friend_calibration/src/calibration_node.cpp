@@ -18,7 +18,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "friend_calibration/calibration_msgs.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include "imagenets/inner_net.h"
 #include "robot_description/joint_state.h"
 
@@ -260,21 +260,25 @@ void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
 imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::Request& req, const Progress& progress) {
   imagenets::Calibrate::Response res;
   const auto& base = model_.description().base_frame;
-  bool expected = false;
-  if (!busy_.compare_exchange_strong(expected, true)) {
-    res.success = false;
-    res.message = "rejected: a calibration is already running (" + busy_with_ + "); try again when it has finished";
-    return res;
+  const int n = req.redundancy > 0 ? req.redundancy : default_redundancy_;
+  const std::string method = req.method.empty() ? default_method_ : req.method;
+  {
+    // One lock for the flag and its description: triggers arrive on several spinner threads at once.
+    std::lock_guard<std::mutex> lock(busy_mutex_);
+    if (busy_) {
+      res.success = false;
+      res.message = "rejected: a calibration is already running (" + busy_with_ + "); try again when it has finished";
+      return res;
+    }
+    busy_ = true;
+    busy_with_ = (req.replay.empty() ? "redundancy " + std::to_string(n) : "replay of " + req.replay) + ", method " +
+                 method + ", started " + utcStamp(true);
   }
   struct Release {
     std::atomic<bool>& b;
     ~Release() { b = false; }
   } release{busy_};
   const auto start = std::chrono::steady_clock::now();
-  const int n = req.redundancy > 0 ? req.redundancy : default_redundancy_;
-  const std::string method = req.method.empty() ? default_method_ : req.method;
-  busy_with_ = (req.replay.empty() ? "redundancy " + std::to_string(n) : "replay of " + req.replay) + ", method " +
-               method + ", started " + utcStamp(true);
   try {
     if (!net_error_.empty()) throw std::runtime_error("the calibration net is not usable: " + net_error_);
     if (method != "paper" && method != "joint") {

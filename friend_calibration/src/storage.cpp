@@ -1,7 +1,9 @@
 #include "friend_calibration/storage.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +11,7 @@
 #include <stdexcept>
 
 #include <unistd.h>
+#include <boost/crc.hpp>
 #include <yaml-cpp/yaml.h>
 
 namespace friend_calibration {
@@ -55,6 +58,33 @@ void emitObservation(YAML::Emitter& out, const MarkerObservation& o) {
     out << YAML::Key << "reason" << YAML::Value << o.reason;
   }
   out << YAML::EndMap;
+}
+
+constexpr const char* kCrcKey = "crc32: ";
+
+std::uint32_t crc32(const std::string& bytes) {
+  boost::crc_32_type crc;
+  crc.process_bytes(bytes.data(), bytes.size());
+  return crc.checksum();
+}
+
+// Throws unless `text` ends with the line "crc32: 0x........" holding the CRC-32 of all before it.
+void checkCrc(const std::string& path, const std::string& text) {
+  const std::string file = "calibration file '" + path + "'";
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw std::runtime_error(file + " is empty");
+  const size_t at = text.rfind(std::string("\n") + kCrcKey);
+  const size_t end = at == std::string::npos ? at : text.find('\n', at + 1);
+  if (end == std::string::npos || end + 1 != text.size()) {
+    throw std::runtime_error(file + " is incomplete: its last line is not its '" + std::string(kCrcKey) +
+                             "0x...' line (cut short?)");
+  }
+  const std::string written = text.substr(at + 1 + std::strlen(kCrcKey), end - at - 1 - std::strlen(kCrcKey));
+  char actual[16];
+  std::snprintf(actual, sizeof actual, "0x%08x", crc32(text.substr(0, at + 1)));
+  if (written != actual) {
+    throw std::runtime_error(file + " is corrupt: it says " + kCrcKey + written + " but its content gives " + actual +
+                             " (altered or damaged; calibrate again, or put back an archived copy)");
+  }
 }
 
 // --- reading ---
@@ -194,15 +224,27 @@ std::string saveCalibration(const StoredCalibration& c, const std::string& path)
   out << YAML::EndSeq;
   out << YAML::EndMap;
   if (!out.good()) throw std::runtime_error("cannot write calibration '" + path + "': " + out.GetLastError());
+  // The last line holds the CRC-32 of every byte before it: a file cut short anywhere (a full
+  // disk, an interrupted copy) or altered is refused, also where the rest would still parse.
+  const std::string body = std::string(out.c_str()) + "\n";
+  char crc_line[40];
+  std::snprintf(crc_line, sizeof crc_line, "%s0x%08x\n", kCrcKey, crc32(body));
 
   const fs::path target(path);
   std::error_code ec;
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
   if (ec) throw std::runtime_error("cannot create the directory of '" + path + "': " + ec.message());
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  // Temporary files of a writer that died before its rename (killed, power cut): never used.
+  if (fs::is_directory(target.parent_path().empty() ? "." : target.parent_path(), ec)) {
+    const std::string prefix = target.filename().string() + ".tmp.";
+    for (const auto& e : fs::directory_iterator(target.parent_path().empty() ? "." : target.parent_path(), ec)) {
+      if (e.path().filename().string().rfind(prefix, 0) == 0) fs::remove(e.path(), ec);
+    }
+  }
   {
-    std::ofstream f(tmp, std::ios::trunc);
-    f << out.c_str() << "\n";
+    std::ofstream f(tmp, std::ios::trunc | std::ios::binary);
+    f << body << crc_line;
     f.flush();
     if (!f) {
       fs::remove(tmp, ec);
@@ -234,11 +276,13 @@ StoredCalibration loadCalibration(const std::string& path) {
   StoredCalibration c;
   c.file = path;
   Reader rd{path};
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw std::runtime_error("calibration file '" + path + "' cannot be read");
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  checkCrc(path, text);
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw std::runtime_error("calibration file '" + path + "' cannot be read");
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error("calibration file '" + path + "': " + e.what());
   }

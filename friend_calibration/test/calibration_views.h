@@ -12,7 +12,7 @@
 #include <opencv2/core.hpp>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 
 namespace friend_calibration {
 

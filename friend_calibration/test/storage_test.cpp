@@ -2,15 +2,26 @@
 // named errors for bad files.
 #include "friend_calibration/storage.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include <boost/crc.hpp>
 #include <gtest/gtest.h>
 
 namespace friend_calibration {
 namespace {
 
 namespace fs = std::filesystem;
+
+// `text` with the CRC line a saved file ends with (storage.h).
+std::string withCrc(const std::string& text) {
+  boost::crc_32_type crc;
+  crc.process_bytes(text.data(), text.size());
+  char line[32];
+  std::snprintf(line, sizeof line, "crc32: 0x%08x\n", crc.checksum());
+  return text + line;
+}
 
 struct StorageTest : ::testing::Test {
   RobotModel model{robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath())};
@@ -95,13 +106,48 @@ TEST_F(StorageTest, BadFilesAreNamedErrors) {
     EXPECT_NE(std::string(e.what()).find("missing.yaml"), std::string::npos) << e.what();
   }
   const std::string bad = (dir / "bad.yaml").string();
-  std::ofstream(bad) << "method: paper\nfixed_point: {xyz: [1, 2], quaternion_xyzw: [0, 0, 0, 1]}\n";
+  std::ofstream(bad) << withCrc("method: paper\nfixed_point: {xyz: [1, 2], quaternion_xyzw: [0, 0, 0, 1]}\n");
   try {
     loadCalibration(bad);
     FAIL();
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("fixed_point.xyz"), std::string::npos) << e.what();
   }
+}
+
+// A file cut short anywhere (a full disk, an interrupted copy) or altered is refused with a named
+// error, also where the rest would parse (between two samples, inside a number); so is an empty one.
+TEST_F(StorageTest, TruncatedCorruptOrEmptyFilesAreRefused) {
+  StoredCalibration c;
+  c.result = someResult();
+  const std::string path = (dir / "pth_fixed_point.yaml").string();
+  saveCalibration(c, path);
+  std::ifstream in(path);
+  const std::string whole((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_NO_THROW(loadCalibration(path));
+  const std::string damaged = (dir / "damaged.yaml").string();
+  auto refusal = [&](const std::string& content) -> std::string {
+    std::ofstream(damaged, std::ios::trunc | std::ios::binary) << content;
+    try {
+      loadCalibration(damaged);
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("damaged.yaml"), std::string::npos) << e.what();
+      return e.what();
+    }
+    return "";
+  };
+  for (size_t n = 0; n + 1 < whole.size(); n += 7) {
+    EXPECT_NE(refusal(whole.substr(0, n)), "") << "accepted the file cut after " << n << " of " << whole.size() << " bytes";
+  }
+  // Cut at the start of its last line: everything else is there and parses.
+  EXPECT_NE(refusal(whole.substr(0, whole.rfind("crc32:"))).find("incomplete"), std::string::npos);
+  // One digit of the fixed point changed: still valid YAML with a plausible value.
+  std::string altered = whole;
+  const size_t digit = altered.find_first_of("123456789", altered.find("fixed_point: {xyz: [") + 25);
+  altered[digit] = altered[digit] == '9' ? '8' : altered[digit] + 1;
+  EXPECT_NE(refusal(altered).find("corrupt"), std::string::npos);
+  EXPECT_NE(refusal(whole.substr(0, 100) + "\x01\x02{{[[ garbage" + whole.substr(140)).find("corrupt"), std::string::npos);
+  EXPECT_NE(refusal("").find("empty"), std::string::npos);
 }
 
 }  // namespace

@@ -10,9 +10,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include "friend_hw_sim/friend_sim.h"
-#include "imagenets/blocks/frames.h"
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/read_camera_info.h"
+#include "imagenets/vision/frames.h"
+#include "imagenets/vision/marker.h"
+#include "imagenets/vision/read_camera_info.h"
 
 namespace friend_hw_sim {
 
@@ -212,7 +212,7 @@ CameraSim::Camera CameraSim::makeCamera(ros::NodeHandle nh, const std::string& n
   c.name = name;
   c.frame = frame;
   try {
-    c.info = imagenets::blocks::readCameraInfo(info_file);
+    c.info = imagenets::readCameraInfo(info_file);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("camera '" + name + "': " + e.what());
   }
@@ -306,6 +306,7 @@ void addSpecularHighlight(cv::Mat& image, const cv::Point2d& centre, double sigm
 
 bool CameraSim::applyFaults(cv::Mat& image, const Camera& cam, const Eigen::Isometry3d& camera_in_base,
                             const Eigen::Isometry3d& marker_in_base) {
+  if (silent()) return false;
   double p_drop = 0, p_corrupt = 0, p_reflection = 0;
   pnh_.getParamCached("faults/drop_frame_probability", p_drop);
   pnh_.getParamCached("faults/corrupt_frame_probability", p_corrupt);
@@ -375,11 +376,17 @@ void CameraSim::publishHand() {
   if (applyFaults(image, hand_, cam, marker)) publish(hand_, image, s.stamp);
 }
 
+bool CameraSim::silent() {
+  bool silent = false;
+  pnh_.getParamCached("faults/camera_silent", silent);
+  return silent;
+}
+
 bool CameraSim::triggerStereo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
   try {
-    publishStereo();
-    res.success = true;
-    res.message = "stereo pair published";
+    res.success = !silent();
+    if (res.success) publishStereo();
+    res.message = res.success ? "stereo pair published" : "stereo camera silent (fault: ~faults/camera_silent)";
   } catch (const std::exception& e) {
     res.success = false;
     res.message = std::string("stereo camera: ") + e.what();
@@ -389,9 +396,9 @@ bool CameraSim::triggerStereo(std_srvs::Trigger::Request&, std_srvs::Trigger::Re
 
 bool CameraSim::triggerHand(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
   try {
-    publishHand();
-    res.success = true;
-    res.message = "hand camera image published";
+    res.success = !silent();
+    if (res.success) publishHand();
+    res.message = res.success ? "hand camera image published" : "hand camera silent (fault: ~faults/camera_silent)";
   } catch (const std::exception& e) {
     res.success = false;
     res.message = std::string("hand camera: ") + e.what();

@@ -6,7 +6,7 @@
 
 #include "friend_hw_sim/cameras.h"
 #include "friend_hw_sim/true_robot.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 
 namespace friend_hw_sim {
 

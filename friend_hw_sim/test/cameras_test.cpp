@@ -9,7 +9,7 @@
 
 #include "friend_hw_sim/cameras.h"
 #include "robot_description/robot_model.h"
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 
 using namespace friend_hw_sim;
 using namespace robot_description;

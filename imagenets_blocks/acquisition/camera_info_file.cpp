@@ -1,7 +1,7 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "imagenets/block.h"
-#include "imagenets/blocks/read_camera_info.h"
+#include "imagenets/vision/read_camera_info.h"
 #include "imagenets/register_block.h"
 #include "imagenets/time.h"
 

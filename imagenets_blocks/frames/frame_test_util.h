@@ -7,7 +7,7 @@
 #include <geometry_msgs/TransformStamped.h>
 
 #include "imagenets/blocks/block_harness.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 
 namespace imagenets {
 namespace blocks {

@@ -3,10 +3,11 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <std_msgs/Float64.h>
 
-#include "imagenets/blocks/apriltag_marker.h"
+#include "imagenets/vision/apriltag_marker.h"
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/marker_msgs.h"
+#include "imagenets/vision/marker_msgs.h"
 #include "imagenets/register_block.h"
+#include "marker_ports.h"
 
 namespace imagenets {
 namespace blocks {

@@ -5,8 +5,8 @@
 #include <imagenets/MarkerDetection.h>
 #include <std_msgs/Float64.h>
 
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/marker_msgs.h"
+#include "imagenets/vision/marker.h"
+#include "imagenets/vision/marker_msgs.h"
 #include "imagenets/executor.h"
 #include "imagenets/net.h"
 

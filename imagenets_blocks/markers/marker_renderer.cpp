@@ -3,12 +3,14 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "imagenets/blocks/apriltag_marker.h"
+#include "imagenets/vision/apriltag_marker.h"
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/marker_msgs.h"
-#include "imagenets/blocks/marker_scene.h"
+#include "imagenets/vision/marker.h"
+#include "imagenets/vision/frames.h"
+#include "imagenets/vision/marker_msgs.h"
+#include "imagenets/vision/marker_scene.h"
 #include "imagenets/register_block.h"
+#include "camera_ports.h"
 
 namespace imagenets {
 namespace blocks {
@@ -42,13 +44,7 @@ class MarkerRenderer : public Block {
 
   void process(Context& ctx) override {
     const auto info = ctx.input<sensor_msgs::CameraInfo>("camera_info");
-    if (!info) throw BlockError("input 'camera_info': missing");
-    render::CameraModel camera;
-    try {
-      camera = render::CameraModel::fromCameraInfo(*info);
-    } catch (const std::exception& e) {
-      throw BlockError(std::string("input 'camera_info': ") + e.what());
-    }
+    const render::CameraModel camera = inputCameraModel(ctx, "camera_info");
     const std::string marker_path = ctx.property<std::string>("marker");
     render::Plane plane;
     try {
@@ -91,7 +87,7 @@ class MarkerRenderer : public Block {
     ctx.output("camera_info", info_out);
     auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
     pose->header = header;
-    pose->pose = marker::toPoseMsg(truth);
+    pose->pose = frames::toPose(truth);
     ctx.output("ground_truth", pose);
   }
 };

@@ -5,8 +5,8 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/marker_msgs.h"
+#include "imagenets/vision/marker.h"
+#include "imagenets/vision/marker_msgs.h"
 #include "imagenets/executor.h"
 
 using namespace imagenets;

@@ -6,107 +6,11 @@
 #include <std_msgs/Float64.h>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/marker_msgs.h"
+#include "imagenets/vision/marker_msgs.h"
 #include "imagenets/register_block.h"
+#include "marker_ports.h"
 
 namespace imagenets {
-namespace marker {
-
-geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& pose) {
-  geometry_msgs::Pose p;
-  p.position.x = pose.translation().x();
-  p.position.y = pose.translation().y();
-  p.position.z = pose.translation().z();
-  const Eigen::Quaterniond q(pose.linear());
-  p.orientation.x = q.x();
-  p.orientation.y = q.y();
-  p.orientation.z = q.z();
-  p.orientation.w = q.w();
-  return p;
-}
-
-Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z)
-                   .normalized()
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
-  return T;
-}
-
-imagenets::MarkerDetectionPtr toMsg(const Detection& d, const std::string& marker_name, const std_msgs::Header& header) {
-  auto msg = boost::make_shared<imagenets::MarkerDetection>();
-  msg->header = header;
-  msg->marker = marker_name;
-  msg->found = d.found;
-  msg->confidence = d.confidence;
-  msg->threshold = std::numeric_limits<double>::quiet_NaN();
-  if (d.found) {
-    for (const auto& p : d.points) {
-      geometry_msgs::Point q;
-      q.x = p.x;
-      q.y = p.y;
-      msg->points.push_back(q);
-    }
-    msg->pose = toPoseMsg(d.pose);
-    msg->alternative_pose = toPoseMsg(d.alt_pose);
-    msg->reprojection_error = d.reprojection_error;
-    msg->alternative_reprojection_error = d.alt_reprojection_error;
-  } else {
-    msg->pose.orientation.w = msg->alternative_pose.orientation.w = 1.0;
-  }
-  return msg;
-}
-
-render::CameraModel inputCameraModel(const Context& ctx, const cv::Mat& gray, cv::Point2d* offset) {
-  const auto info = ctx.input<sensor_msgs::CameraInfo>("camera_info");
-  if (!info) throw BlockError("input 'camera_info': missing");
-  render::CameraModel camera;
-  try {
-    camera = render::CameraModel::fromCameraInfo(*info);
-  } catch (const std::exception& e) {
-    throw BlockError(std::string("input 'camera_info': ") + e.what());
-  }
-  const sensor_msgs::RegionOfInterest& roi = info->roi;
-  if (roi.width > 0 && roi.height > 0) {
-    const cv::Rect region(roi.x_offset, roi.y_offset, roi.width, roi.height);
-    if ((region & cv::Rect(0, 0, camera.width, camera.height)) != region) {
-      throw BlockError("input 'camera_info': roi " + std::to_string(roi.width) + "x" + std::to_string(roi.height) +
-                       " at " + std::to_string(roi.x_offset) + "," + std::to_string(roi.y_offset) +
-                       " is not inside the " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
-                       " image");
-    }
-    camera = camera.cropped(region);
-    if (offset) *offset = cv::Point2d(roi.x_offset, roi.y_offset);
-  } else if (offset) {
-    *offset = cv::Point2d(0, 0);
-  }
-  if (gray.cols != camera.width || gray.rows != camera.height) {
-    throw BlockError("input 'gray': image is " + std::to_string(gray.cols) + "x" + std::to_string(gray.rows) +
-                     " but camera_info is " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
-                     (roi.width > 0 && roi.height > 0 ? " (its roi)" : ""));
-  }
-  return camera;
-}
-
-void shiftPoints(Detection& d, const cv::Point2d& offset) {
-  if (!d.found) return;
-  for (auto& p : d.points) p += offset;
-}
-
-void outputConfidenceAndPose(Context& ctx, const Detection& d, const std_msgs::Header& header) {
-  if (!d.found) return;
-  auto score = boost::make_shared<std_msgs::Float64>();
-  score->data = d.confidence;
-  ctx.output("confidence", score);
-  auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
-  pose->header = header;
-  pose->pose = toPoseMsg(d.pose);
-  ctx.output("pose", pose);
-}
-
-}  // namespace marker
-
 namespace blocks {
 
 // Finds the square marker in a thresholded image; refines its corners on the gray image.

@@ -10,9 +10,9 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <std_msgs/Float64.h>
 
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/marker_msgs.h"
-#include "imagenets/blocks/render.h"
+#include "imagenets/vision/marker.h"
+#include "imagenets/vision/marker_msgs.h"
+#include "imagenets/vision/render.h"
 #include "imagenets/executor.h"
 #include "imagenets/net.h"
 

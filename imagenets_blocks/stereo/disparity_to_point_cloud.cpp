@@ -3,7 +3,7 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/point_cloud.h"
 #include "imagenets/register_block.h"
 
 namespace imagenets {

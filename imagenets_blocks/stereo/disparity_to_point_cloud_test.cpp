@@ -4,7 +4,7 @@
 
 #include "imagenets/blocks/block_harness.h"
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/point_cloud.h"
 
 using namespace imagenets::blocks;
 

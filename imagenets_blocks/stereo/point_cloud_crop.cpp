@@ -1,7 +1,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/point_cloud.h"
 #include "imagenets/register_block.h"
 #include "imagenets/block.h"
 

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "imagenets/blocks/block_harness.h"
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/point_cloud.h"
 
 using namespace imagenets::blocks;
 using imagenets::cloud::PointXYZRGB;

@@ -1,4 +1,4 @@
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/point_cloud.h"
 #include "imagenets/register_block.h"
 #include "imagenets/block.h"
 

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "imagenets/blocks/block_harness.h"
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/point_cloud.h"
 
 using namespace imagenets::blocks;
 

@@ -5,7 +5,7 @@
 #include <sensor_msgs/PointCloud2.h>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/point_cloud.h"
 #include "stereo_test_util.h"
 
 using namespace imagenets::blocks;

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <sensor_msgs/PointCloud2.h>
 
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/point_cloud.h"
 #include "imagenets/executor.h"
 
 namespace {

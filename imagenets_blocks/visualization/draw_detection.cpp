@@ -5,7 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include "imagenets/blocks/image.h"
 #include "imagenets/register_block.h"
 

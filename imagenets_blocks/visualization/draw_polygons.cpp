@@ -1,7 +1,7 @@
 #include <imagenets/Polygons.h>
 #include <opencv2/imgproc.hpp>
 
-#include "../features/polygon_ports.h"
+#include "polygon_ports.h"
 #include "imagenets/blocks/image.h"
 #include "imagenets/register_block.h"
 

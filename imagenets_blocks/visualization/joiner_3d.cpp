@@ -4,8 +4,8 @@
 #include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "../frames/frame_ports.h"
-#include "imagenets/blocks/point_cloud.h"
+#include "frame_ports.h"
+#include "imagenets/vision/point_cloud.h"
 #include "imagenets/register_block.h"
 
 namespace imagenets {

@@ -3,7 +3,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "../frames/frame_test_util.h"
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/point_cloud.h"
 
 using namespace imagenets::blocks;
 using namespace imagenets::blocks::test;

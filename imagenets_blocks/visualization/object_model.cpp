@@ -1,6 +1,6 @@
 #include <visualization_msgs/Marker.h>
 
-#include "../frames/frame_ports.h"
+#include "frame_ports.h"
 #include "imagenets/register_block.h"
 
 namespace imagenets {

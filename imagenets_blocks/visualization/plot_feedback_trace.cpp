@@ -1,5 +1,5 @@
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/plot.h"
+#include "imagenets/vision/plot.h"
 #include "imagenets/register_block.h"
 
 namespace imagenets {

@@ -1,7 +1,7 @@
 #include <std_msgs/Float64MultiArray.h>
 
 #include "imagenets/blocks/image.h"
-#include "imagenets/blocks/plot.h"
+#include "imagenets/vision/plot.h"
 #include "imagenets/register_block.h"
 
 namespace imagenets {

@@ -10,7 +10,7 @@
 
 #include "friend_calibration/calibration.h"
 #include "friend_hw_sim/true_robot.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 
 namespace imagenets {
 namespace tool {

@@ -15,9 +15,9 @@
 #include <ros/package.h>
 
 #include "command.h"
-#include "imagenets/blocks/marker.h"
-#include "imagenets/blocks/marker_net.h"
-#include "imagenets/blocks/read_camera_info.h"
+#include "imagenets/vision/marker.h"
+#include "marker_study/marker_net.h"
+#include "imagenets/vision/read_camera_info.h"
 
 namespace imagenets {
 namespace tool {
@@ -83,7 +83,7 @@ int run(const Args& args) {
   boost::shared_ptr<sensor_msgs::CameraInfo> info;
   std::string camera_name;
   try {
-    info = boost::make_shared<sensor_msgs::CameraInfo>(blocks::readCameraInfo(camera_path, &camera_name));
+    info = boost::make_shared<sensor_msgs::CameraInfo>(readCameraInfo(camera_path, &camera_name));
   } catch (const std::exception& e) {
     std::cerr << "imagenets detect: --camera: " << e.what() << "\n";
     return 1;

@@ -1,5 +1,5 @@
 // `imagenets marker-study`: the paper's marker accuracy study (5.1, Fig. 5.2), see
-// imagenets/blocks/marker_study.h. Writes study.csv, summary.md and error_map_<lighting>.png.
+// marker_study/marker_study.h. Writes study.csv, summary.md and error_map_<lighting>.png.
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -12,7 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "command.h"
-#include "imagenets/blocks/marker_study.h"
+#include "marker_study/marker_study.h"
 
 namespace imagenets {
 namespace tool {

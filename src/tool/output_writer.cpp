@@ -12,8 +12,8 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/image_encodings.h>
 
-#include "imagenets/blocks/plot.h"
-#include "imagenets/blocks/point_cloud.h"
+#include "imagenets/vision/plot.h"
+#include "imagenets/vision/point_cloud.h"
 #include <imagenets/FeedbackTrace.h>
 
 namespace imagenets {

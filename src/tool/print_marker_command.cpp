@@ -12,7 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "command.h"
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 
 namespace imagenets {
 namespace tool {

@@ -18,7 +18,7 @@
 #include "calibration_client.h"
 #include "command.h"
 #include "friend_calibration/calibration.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include <ros/ros.h>
 
 namespace imagenets {

@@ -10,7 +10,7 @@
 #include "../../imagenets_core/src/nodelet/param_text.h"
 #include "friend_calibration/storage.h"
 #include "robot_description/robot_model.h"
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 #include "imagenets/executor.h"
 #include "imagenets/net.h"
 #include "imagenets/property.h"

@@ -21,9 +21,10 @@
 
 #include "friend_calibration/calibration.h"
 #include "friend_hw_sim/cameras.h"
+#include "robot_description/joint_state.h"
 #include "robot_description/robot_model.h"
 #include "imagenets/Calibrate.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include "rostest_util.h"
 
 namespace {
@@ -85,12 +86,7 @@ TEST(Fig4_4CalibratedCamera, ExtrinsicsCloudAndDetectionImages) {
   auto js = joints.waitFrom(ext->header.stamp, 5.0);
   ASSERT_TRUE(js);
   const robot_description::RobotModel model(robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
-  std::vector<double> head;
-  for (const auto& name : model.description().head.names()) {
-    const auto it = std::find(js->name.begin(), js->name.end(), name);
-    ASSERT_NE(it, js->name.end()) << name;
-    head.push_back(js->position[it - js->name.begin()]);
-  }
+  const std::vector<double> head = robot_description::jointPositions(*js, model.description().head.names());
   const Eigen::Isometry3d expected = fixed_point * friend_calibration::headChain(model, head);
   const Eigen::Isometry3d got = imagenets::frames::toIsometry(ext->transform, "extrinsics");
   EXPECT_LT((got.translation() - expected.translation()).norm(), 1e-4)

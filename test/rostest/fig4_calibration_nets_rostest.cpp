@@ -25,7 +25,7 @@
 #include "friend_calibration/storage.h"
 #include "imagenets/BlockNodeletStatus.h"
 #include "imagenets/Calibrate.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include "rostest_util.h"
 namespace {
 

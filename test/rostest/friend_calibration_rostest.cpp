@@ -19,7 +19,7 @@
 #include "friend_calibration/calibration.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"
-#include "imagenets/blocks/frames.h"
+#include "imagenets/vision/frames.h"
 #include "imagenets/calling_thread_queue.h"
 #include "rostest_util.h"
 

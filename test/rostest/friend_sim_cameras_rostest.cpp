@@ -19,7 +19,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include "robot_description/robot_model.h"
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 #include "imagenets/MoveJointsAction.h"
 #include "imagenets/calling_thread_queue.h"
 #include "rostest_util.h"
@@ -87,7 +87,7 @@ TEST_F(FriendSimCameras, MarkerAppearsWhereTheTrueGeometryProjectsIt) {
   auto gm = gt_marker_.wait(2), gl = gt_left_.wait(2),
        gr = gt_right_.wait(2);
   ASSERT_TRUE(gm && gl && gr) << "ground truth topics missing";
-  // The project's marker detector (imagenets/blocks/marker.h) on each image, compared with the
+  // The project's marker detector (imagenets/vision/marker.h) on each image, compared with the
   // 8 defined points of the gripper marker projected through the TRUE geometry.
   const auto marker = imagenets::marker::MarkerDescription::load(ros::package::getPath("imagenets") +
                                                                  "/config/markers/gripper.yaml");
@@ -177,6 +177,25 @@ TEST_F(FriendSimCameras, DroppedFramesAndReflectionsFollowTheFaultParameters) {
   }
   EXPECT_GT(rows_changed, clean.rows / 20);
   EXPECT_LT(rows_changed, clean.rows / 2);
+}
+
+// The camera goes silent while faults/camera_silent is true (a pulled cable), and comes back.
+TEST_F(FriendSimCameras, SilentCameraPublishesNothingUntilTheFaultEnds) {
+  ros::NodeHandle sim("friend_sim");
+  auto trigger = [](std_srvs::Trigger* t) { return ros::service::call("stereo/trigger", *t); };
+  sim.setParam("faults/camera_silent", true);
+  std_srvs::Trigger t;
+  // The simulator reads its parameters through a cache: wait until the change has reached it.
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (trigger(&t) && t.response.success && ros::WallTime::now() < deadline) ros::WallDuration(0.05).sleep();
+  ASSERT_FALSE(t.response.success) << "the trigger still succeeds with the camera silent";
+  EXPECT_NE(t.response.message.find("silent"), std::string::npos) << t.response.message;
+  sensor_msgs::ImageConstPtr l, r;
+  EXPECT_FALSE(grab(&l, &r, 1.0)) << "images published although the camera is silent";
+  sim.setParam("faults/camera_silent", false);
+  bool back = false;
+  for (int i = 0; i < 60 && !back; ++i) back = grab(&l, &r, 0.5);
+  EXPECT_TRUE(back) << "no images after the camera_silent fault ended";
 }
 
 TEST_F(FriendSimCameras, IlluminationIsSettableLive) {

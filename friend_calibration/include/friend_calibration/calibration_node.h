@@ -42,7 +42,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "friend_calibration/calibration.h"
-#include "imagenets/blocks/marker.h"
+#include "imagenets/vision/marker.h"
 #include "friend_calibration/storage.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"
@@ -112,6 +112,7 @@ class CalibrationNode {
   std::mutex calibration_mutex_;  // guards current_ (the published calibration)
   bool have_calibration_ = false;
   Eigen::Isometry3d current_ = Eigen::Isometry3d::Identity();
+  std::mutex busy_mutex_;  // guards busy_with_, and busy_ being set
   std::atomic<bool> busy_{false};
   std::string busy_with_;
 };

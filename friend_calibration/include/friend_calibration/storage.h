@@ -1,7 +1,8 @@
 // Calibration files (YAML): the fixed point, its spread, and every raw sample (joint states and
 // both detections) so a calibration can be re-solved later without the robot (replay).
 // Written atomically (temporary file + rename); the previous file is kept beside it with its
-// time stamp (pth_fixed_point.20261122T041500Z.yaml).
+// time stamp (pth_fixed_point.20261122T041500Z.yaml). The last line is the CRC-32 of all before it
+// (`crc32: 0x1a2b3c4d`), so a file cut short or altered is refused when read.
 #pragma once
 
 #include <string>
@@ -22,7 +23,8 @@ struct StoredCalibration {
 // archived to ("" when there was none). Throws std::runtime_error naming the path on failure; the
 // old file is then untouched.
 std::string saveCalibration(const StoredCalibration& calibration, const std::string& path);
-// Throws std::runtime_error naming the file and key on a missing file or bad content.
+// Throws std::runtime_error naming the file (and the key) on a missing, empty, incomplete (no CRC
+// line at its end), corrupt (CRC differs) file or bad content.
 StoredCalibration loadCalibration(const std::string& path);
 // Current UTC time as 20261122T041500Z (file names) or 2026-11-22T04:15:00Z (iso = true).
 std::string utcStamp(bool iso);

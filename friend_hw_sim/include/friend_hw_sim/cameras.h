@@ -1,7 +1,7 @@
 // Simulated cameras of the FRIEND robot: the stereo camera on the pan-tilt head (left/right
 // image_raw + camera_info, identical stamps) and the hand camera on the gripper. Images are
 // rendered from the TRUE geometry (where the arm and head really are) with the shared renderer
-// (imagenets/blocks/render.h): the gripper marker on its plate, plus a textured table, boxes,
+// (imagenets/vision/render.h): the gripper marker on its plate, plus a textured table, boxes,
 // floor and wall (config/friend/scene.yaml).
 //
 // Topics: stereo/{left,right}/{image_raw,camera_info}, hand_camera/{image_raw,camera_info};
@@ -13,7 +13,9 @@
 //   camera/color (false: mono8), camera/supersampling (at start, 2), scene (file, at start),
 //   marker (marker description YAML, at start; default config/markers/gripper.yaml),
 //   faults/drop_frame_probability, faults/corrupt_frame_probability,
-//   faults/reflection_probability (a specular highlight near the marker: outlier detections).
+//   faults/reflection_probability (a specular highlight near the marker: outlier detections),
+//   faults/camera_silent (bool: no camera publishes anything, triggers answer failure; e.g. a
+//   cable pulled for a while).
 #pragma once
 
 #include <atomic>
@@ -29,7 +31,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <std_srvs/Trigger.h>
 
-#include "imagenets/blocks/render.h"
+#include "imagenets/vision/render.h"
 
 namespace friend_hw_sim {
 
@@ -93,6 +95,8 @@ class CameraSim {
   bool triggerStereo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool triggerHand(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   imagenets::render::RenderOptions options(std::uint64_t seed);
+  // faults/camera_silent is set.
+  bool silent();
   // Applies the configured faults; returns false when the frame is dropped.
   bool applyFaults(cv::Mat& image, const Camera& cam, const Eigen::Isometry3d& camera_in_base,
                    const Eigen::Isometry3d& marker_in_base);

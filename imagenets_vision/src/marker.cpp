@@ -1,0 +1,440 @@
+// Square marker description and detector (see marker.h).
+//
+// Detection: quadrilaterals from the contours of the dark regions of the thresholded image give
+// rough outer corners. The threshold only decides *whether* a marker is found: every edge of the
+// border (4 outer, 4 inner) is then located again on the gray image, threshold-free, as the
+// crossing of the local mid-level between the dark and the bright side, at many points along the
+// edge; those points are undistorted and a straight line is fitted robustly to each edge (lines
+// are straight only without lens distortion); corners are line intersections. The inner area,
+// rectified by the homography of the outer corners, is compared with the pattern in 4 rotations
+// (confidence and orientation). The pose: IPPE on the 8 points (both solutions), each refined by
+// Levenberg-Marquardt, the lower reprojection error wins.
+#include "imagenets/vision/marker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+
+#include <boost/filesystem.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <yaml-cpp/yaml.h>
+
+namespace imagenets {
+namespace marker {
+
+// ---------------------------------------------------------------- description
+
+MarkerDescription MarkerDescription::load(const std::string& yaml_path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(yaml_path);
+  } catch (const YAML::BadFile&) {
+    throw std::runtime_error(yaml_path + ": cannot read marker file");
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error(yaml_path + ": not valid YAML: " + e.what());
+  }
+  if (!root.IsMap()) throw std::runtime_error(yaml_path + ": a marker file is a YAML map");
+  MarkerDescription m;
+  m.file = yaml_path;
+  auto number = [&](const char* key, double def, bool required, double lo, double hi) {
+    const YAML::Node n = root[key];
+    if (!n) {
+      if (required) throw std::runtime_error(yaml_path + ": missing key '" + key + "'");
+      return def;
+    }
+    double v;
+    try {
+      v = n.as<double>();
+    } catch (const YAML::Exception&) {
+      throw std::runtime_error(yaml_path + ": '" + key + "' must be a number");
+    }
+    if (!(v > lo && v < hi)) {
+      throw std::runtime_error(yaml_path + ": '" + key + "' = " + std::to_string(v) + " is out of range (" +
+                               std::to_string(lo) + ", " + std::to_string(hi) + ")");
+    }
+    return v;
+  };
+  auto text = [&](const char* key) {
+    const YAML::Node n = root[key];
+    if (!n.IsScalar()) throw std::runtime_error(yaml_path + ": '" + key + "' must be text");
+    return n.Scalar();
+  };
+  m.name = root["name"] ? text("name") : boost::filesystem::path(yaml_path).stem().string();
+  m.size = number("size", 0.06, true, 0.0, 10.0);
+  m.border = number("border", 0.25, false, 0.0, 0.5);
+  m.margin = number("margin", 0.25, false, -1e-12, 10.0);
+  if (!root["pattern"]) throw std::runtime_error(yaml_path + ": missing key 'pattern'");
+  const boost::filesystem::path pattern_path =
+      boost::filesystem::absolute(yaml_path).parent_path() / text("pattern");
+  m.pattern = cv::imread(pattern_path.string(), cv::IMREAD_GRAYSCALE);
+  if (m.pattern.empty()) {
+    throw std::runtime_error(yaml_path + ": 'pattern': cannot read image " + pattern_path.string());
+  }
+  return m;
+}
+
+std::shared_ptr<const MarkerDescription> MarkerDescription::loadCached(const std::string& yaml_path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const MarkerDescription>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& entry = cache[yaml_path];
+  if (!entry) entry = std::make_shared<const MarkerDescription>(load(yaml_path));
+  return entry;
+}
+
+std::vector<cv::Point3d> MarkerDescription::definedPoints() const {
+  const double o = size / 2, i = innerSize() / 2;
+  return {{-o, o, 0}, {o, o, 0}, {o, -o, 0}, {-o, -o, 0}, {-i, i, 0}, {i, i, 0}, {i, -i, 0}, {-i, -i, 0}};
+}
+
+cv::Mat MarkerDescription::texture(double pixels_per_metre, bool with_margin) const {
+  const int border_px = std::max(1, static_cast<int>(std::lround(border * size * pixels_per_metre)));
+  const int inner_px = std::max(1, static_cast<int>(std::lround(innerSize() * pixels_per_metre)));
+  const int margin_px = with_margin ? static_cast<int>(std::lround(margin * size * pixels_per_metre)) : 0;
+  const int total = inner_px + 2 * border_px + 2 * margin_px;
+  cv::Mat tex(total, total, CV_8UC1, cv::Scalar(255));
+  tex(cv::Rect(margin_px, margin_px, inner_px + 2 * border_px, inner_px + 2 * border_px)).setTo(0);
+  cv::Mat inner;
+  const int interp = inner_px >= pattern.cols ? cv::INTER_NEAREST : cv::INTER_AREA;
+  cv::resize(pattern, inner, cv::Size(inner_px, inner_px), 0, 0, interp);
+  inner.copyTo(tex(cv::Rect(margin_px + border_px, margin_px + border_px, inner_px, inner_px)));
+  return tex;
+}
+
+render::Plane markerPlane(const MarkerDescription& marker, const Eigen::Isometry3d& pose, double pixels_per_metre) {
+  render::Plane plane;
+  plane.texture = marker.texture(pixels_per_metre, true);
+  // The texture's pixel grid rounds the physical sizes: keep the border where the description says
+  // it is by scaling the plane to the texture (ground truth must be exact).
+  const double border_px = std::lround(marker.border * marker.size * pixels_per_metre);
+  const double inner_px = std::lround(marker.innerSize() * pixels_per_metre);
+  const double metres_per_px = marker.size / (inner_px + 2 * border_px);
+  plane.width = plane.texture.cols * metres_per_px;
+  plane.height = plane.texture.rows * metres_per_px;
+  plane.pose = pose;
+  return plane;
+}
+
+double rotationAngle(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle();
+}
+
+// ---------------------------------------------------------------- detection
+
+namespace {
+
+// Undistorted normalised coordinates of pixel points.
+std::vector<cv::Point2d> normalise(const std::vector<cv::Point2d>& px, const render::CameraModel& cam) {
+  if (px.empty()) return {};
+  std::vector<cv::Point2d> out;
+  cv::undistortPoints(px, out, cv::Mat(cam.K), cam.D.empty() ? cv::Mat() : cv::Mat(cam.D), cv::noArray(),
+                      cv::noArray(), cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 1e-12));
+  return out;
+}
+
+// Distorted pixel coordinates of normalised points.
+std::vector<cv::Point2d> distort(const std::vector<cv::Point2d>& norm, const render::CameraModel& cam) {
+  if (norm.empty()) return {};
+  std::vector<cv::Point3d> rays;
+  for (const auto& p : norm) rays.emplace_back(p.x, p.y, 1.0);
+  std::vector<cv::Point2d> out;
+  cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), cv::Mat(cam.K),
+                    cam.D.empty() ? cv::Mat() : cv::Mat(cam.D), out);
+  return out;
+}
+
+inline double bilinear(const cv::Mat& img, double x, double y) {
+  x = std::min(std::max(x, 0.0), img.cols - 1.001);
+  y = std::min(std::max(y, 0.0), img.rows - 1.001);
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const double fx = x - x0, fy = y - y0;
+  const uchar* r0 = img.ptr<uchar>(y0);
+  const uchar* r1 = img.ptr<uchar>(y0 + 1);
+  return (r0[x0] * (1 - fx) + r0[x0 + 1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x0 + 1] * fx) * fy;
+}
+
+// Homogeneous line through two normalised points / intersection of two lines.
+cv::Vec3d lineFrom(const cv::Vec4f& fit) {
+  const cv::Vec3d p(fit[2], fit[3], 1.0), q(fit[2] + fit[0], fit[3] + fit[1], 1.0);
+  return p.cross(q);
+}
+bool intersect(const cv::Vec3d& a, const cv::Vec3d& b, cv::Point2d* out) {
+  const cv::Vec3d x = a.cross(b);
+  if (std::abs(x[2]) < 1e-15) return false;
+  *out = cv::Point2d(x[0] / x[2], x[1] / x[2]);
+  return true;
+}
+
+// Locates the 4 edges of the quadrilateral `quad_px` (distorted pixels, clockwise) on the gray
+// image and returns the refined corners in normalised coordinates. `window`: how far (pixels)
+// from the current edge the edge may be. False if an edge could not be located.
+bool refineQuad(const cv::Mat& gray, const render::CameraModel& cam, const std::vector<cv::Point2d>& quad_px,
+                double window, std::vector<cv::Point2d>* corners_norm) {
+  const double step = 0.25;
+  const int n_steps = static_cast<int>(std::ceil(window / step));
+  std::vector<cv::Vec3d> lines(4);
+  std::vector<double> prof(2 * n_steps + 1);
+  for (int k = 0; k < 4; ++k) {
+    const cv::Point2d a = quad_px[k], b = quad_px[(k + 1) % 4];
+    const cv::Point2d d = b - a;
+    const double len = std::hypot(d.x, d.y);
+    if (len < 4) return false;
+    const cv::Point2d t = d / len, n(t.y, -t.x);  // n: outward normal of a clockwise quad (y down)
+    const int samples = std::max(6, std::min(100, static_cast<int>(len / 1.5)));
+    std::vector<cv::Point2d> edge_px;
+    for (int s = 0; s < samples; ++s) {
+      // Stay away from the corners: there the other edge disturbs the profile.
+      const double u = 0.12 + 0.76 * (s + 0.5) / samples;
+      const cv::Point2d c = a + d * u;
+      // Intensity profile along the normal, averaged over a short segment along the edge.
+      for (int i = -n_steps; i <= n_steps; ++i) {
+        const cv::Point2d q = c + n * (i * step);
+        prof[i + n_steps] = (bilinear(gray, q.x - 0.5 * t.x, q.y - 0.5 * t.y) + bilinear(gray, q.x, q.y) +
+                             bilinear(gray, q.x + 0.5 * t.x, q.y + 0.5 * t.y)) / 3.0;
+      }
+      // Strongest gradient (either polarity: outer edges go dark -> bright outwards, inner ones
+      // bright -> dark), then the mid-level crossing around it: unbiased for a symmetric blur and
+      // independent of any threshold.
+      int best = -1;
+      double best_g = 0;
+      for (int i = 1; i + 1 < static_cast<int>(prof.size()); ++i) {
+        const double g = std::abs(prof[i + 1] - prof[i - 1]);
+        if (g > best_g) best_g = g, best = i;
+      }
+      if (best < 0 || best_g < 4.0) continue;
+      const int reach = static_cast<int>(std::lround(2.5 / step));
+      const int lo_i = std::max(0, best - reach), hi_i = std::min(static_cast<int>(prof.size()) - 1, best + reach);
+      const double side_a = prof[lo_i], side_b = prof[hi_i];
+      if (std::abs(side_b - side_a) < 10.0) continue;  // too little contrast to locate the edge
+      const double mid = 0.5 * (side_a + side_b);
+      // Walk from the gradient peak to the crossing.
+      double pos = std::numeric_limits<double>::quiet_NaN();
+      for (int off = 0; off <= reach && std::isnan(pos); ++off) {
+        for (int sgn : {-1, 1}) {
+          const int i = best + sgn * off;
+          if (i < lo_i || i + 1 > hi_i) continue;
+          const double v0 = prof[i] - mid, v1 = prof[i + 1] - mid;
+          if ((v0 <= 0 && v1 > 0) || (v0 >= 0 && v1 < 0)) {
+            pos = (i + v0 / (v0 - v1) - n_steps) * step;
+            break;
+          }
+        }
+      }
+      if (std::isnan(pos)) continue;
+      edge_px.push_back(c + n * pos);
+    }
+    if (edge_px.size() < 4) return false;
+    const std::vector<cv::Point2d> edge_norm = normalise(edge_px, cam);
+    std::vector<cv::Point2f> pts(edge_norm.begin(), edge_norm.end());
+    cv::Vec4f fit;
+    // Huber: a few samples spoiled by pattern cells touching the border or noise weigh less.
+    cv::fitLine(pts, fit, cv::DIST_HUBER, 0, 1e-7, 1e-7);
+    lines[k] = lineFrom(fit);
+  }
+  corners_norm->resize(4);
+  for (int k = 0; k < 4; ++k) {
+    if (!intersect(lines[(k + 3) % 4], lines[k], &(*corners_norm)[k])) return false;
+  }
+  return true;
+}
+
+double zeroMeanNcc(const cv::Mat& a, const cv::Mat& b) {
+  cv::Scalar ma, sa, mb, sb;
+  cv::meanStdDev(a, ma, sa);
+  cv::meanStdDev(b, mb, sb);
+  if (sa[0] < 1e-6 || sb[0] < 1e-6) return 0.0;
+  cv::Mat a0, b0;
+  a.convertTo(a0, CV_64F, 1.0, -ma[0]);
+  b.convertTo(b0, CV_64F, 1.0, -mb[0]);
+  return a0.dot(b0) / (a.total() * sa[0] * sb[0]);
+}
+
+struct Candidate {
+  std::vector<cv::Point2d> outer_norm;  // clockwise, image corner order
+  double confidence = 0;
+  int rotation = 0;
+};
+
+// Rectifies the inner area through the homography of the outer corners and matches the pattern.
+void matchPattern(const cv::Mat& gray, const render::CameraModel& cam, const MarkerDescription& marker,
+                  const cv::Mat& pattern_cells, int cells, Candidate* cand) {
+  // Marker-plane square [0,1]^2 (u right, v down as in the pattern image) onto the image quad.
+  const std::vector<cv::Point2f> unit{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  std::vector<cv::Point2f> quad(cand->outer_norm.begin(), cand->outer_norm.end());
+  const cv::Mat H = cv::getPerspectiveTransform(unit, quad);
+  const double b = marker.border;
+  std::vector<cv::Point2d> plane, norm;
+  for (int r = 0; r < cells; ++r) {
+    for (int c = 0; c < cells; ++c) {
+      plane.emplace_back(b + (1 - 2 * b) * (c + 0.5) / cells, b + (1 - 2 * b) * (r + 0.5) / cells);
+    }
+  }
+  cv::perspectiveTransform(plane, norm, H);
+  const std::vector<cv::Point2d> px = distort(norm, cam);
+  cv::Mat patch(cells, cells, CV_64F);
+  for (int i = 0; i < cells * cells; ++i) patch.at<double>(i / cells, i % cells) = bilinear(gray, px[i].x, px[i].y);
+  cand->confidence = -1;
+  cv::Mat rotated = patch;
+  for (int k = 0; k < 4; ++k) {
+    const double ncc = zeroMeanNcc(rotated, pattern_cells);
+    if (ncc > cand->confidence) cand->confidence = ncc, cand->rotation = k;
+    cv::rotate(rotated, rotated, cv::ROTATE_90_CLOCKWISE);
+  }
+  cand->confidence = std::max(0.0, std::min(1.0, cand->confidence));
+}
+
+Eigen::Isometry3d toIsometry(const cv::Vec3d& rvec, const cv::Vec3d& tvec) {
+  cv::Matx33d R;
+  cv::Rodrigues(rvec, R);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) T.linear()(r, c) = R(r, c);
+    T.translation()(r) = tvec[r];
+  }
+  return T;
+}
+
+}  // namespace
+
+Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::CameraModel& camera,
+                 const MarkerDescription& marker, const DetectorOptions& options) {
+  if (gray.empty() || gray.type() != CV_8UC1) throw std::invalid_argument("gray image must be a non-empty mono8 image");
+  if (binary.type() != CV_8UC1 || binary.size() != gray.size()) {
+    throw std::invalid_argument("thresholded image must be mono8 and of the gray image's size");
+  }
+  if (gray.cols != camera.width || gray.rows != camera.height) {
+    throw std::invalid_argument("image is " + std::to_string(gray.cols) + "x" + std::to_string(gray.rows) +
+                                " but camera_info says " + std::to_string(camera.width) + "x" +
+                                std::to_string(camera.height));
+  }
+  if (marker.pattern.empty()) throw std::invalid_argument("marker '" + marker.name + "' has no pattern");
+  Detection result;
+
+  cv::Mat pattern_cells;
+  cv::resize(marker.pattern, pattern_cells, cv::Size(options.pattern_cells, options.pattern_cells), 0, 0,
+             cv::INTER_AREA);
+  pattern_cells.convertTo(pattern_cells, CV_64F);
+
+  // Dark regions (the border is below the threshold) and their outer boundaries.
+  cv::Mat dark = binary == 0;
+  std::vector<std::vector<cv::Point>> contours;
+  std::vector<cv::Vec4i> hierarchy;
+  cv::findContours(dark, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE);
+
+  Candidate best;
+  best.confidence = -1;
+  for (size_t ci = 0; ci < contours.size(); ++ci) {
+    if (hierarchy[ci][3] >= 0) continue;  // a hole's boundary, not a region's outline
+    const auto& contour = contours[ci];
+    if (contour.size() < 4 * options.min_side_px) continue;
+    std::vector<cv::Point> approx;
+    cv::approxPolyDP(contour, approx, 0.05 * cv::arcLength(contour, true), true);
+    if (approx.size() != 4 || !cv::isContourConvex(approx)) continue;
+    bool ok = true;
+    for (int k = 0; k < 4 && ok; ++k) {
+      const cv::Point p = approx[k], q = approx[(k + 1) % 4];
+      ok = std::hypot(p.x - q.x, p.y - q.y) >= options.min_side_px && p.x > 2 && p.y > 2 &&
+           p.x < gray.cols - 3 && p.y < gray.rows - 3;
+    }
+    if (!ok) continue;
+    ++result.candidates;
+    std::vector<cv::Point2d> quad(approx.begin(), approx.end());
+    // Clockwise in the image (positive shoelace area with y down).
+    if (cv::contourArea(approx, true) < 0) std::reverse(quad.begin(), quad.end());
+
+    Candidate cand;
+    std::vector<cv::Point2d> outer_px = quad;
+    bool refined = true;
+    for (int pass = 0; pass < options.refine_passes && refined; ++pass) {
+      refined = refineQuad(gray, camera, outer_px, pass == 0 ? 4.0 : 2.5, &cand.outer_norm);
+      if (refined) outer_px = distort(cand.outer_norm, camera);
+    }
+    if (!refined) continue;
+    if (options.refine_passes == 0) cand.outer_norm = normalise(outer_px, camera);
+    matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, &cand);
+    if (cand.confidence > best.confidence) best = cand;
+  }
+  if (best.confidence < options.min_confidence || best.outer_norm.empty()) {
+    result.confidence = std::max(0.0, best.confidence);
+    return result;
+  }
+
+  // Put the corners in marker order: after k clockwise quarter turns of the rectified patch the
+  // marker's top-left corner is image corner (4 - k) % 4.
+  std::vector<cv::Point2d> outer(4);
+  for (int j = 0; j < 4; ++j) outer[j] = best.outer_norm[(j - best.rotation + 8) % 4];
+
+  // Inner corners: start from the homography of the outer ones, then refine their edges too.
+  const std::vector<cv::Point3d> defined = marker.definedPoints();
+  std::vector<cv::Point2f> plane_outer, img_outer(outer.begin(), outer.end());
+  for (int j = 0; j < 4; ++j) plane_outer.emplace_back(defined[j].x, defined[j].y);
+  const cv::Mat H = cv::getPerspectiveTransform(plane_outer, img_outer);
+  std::vector<cv::Point2d> plane_inner, inner_norm;
+  for (int j = 4; j < 8; ++j) plane_inner.emplace_back(defined[j].x, defined[j].y);
+  cv::perspectiveTransform(plane_inner, inner_norm, H);
+  {
+    std::vector<cv::Point2d> inner_px = distort(inner_norm, camera), refined_inner;
+    bool ok = true;
+    for (int pass = 0; pass < options.refine_passes && ok; ++pass) {
+      ok = refineQuad(gray, camera, inner_px, pass == 0 ? 2.5 : 1.5, &refined_inner);
+      if (ok) inner_px = distort(refined_inner, camera), inner_norm = refined_inner;
+    }
+  }
+
+  std::vector<cv::Point2d> image_norm(outer);
+  image_norm.insert(image_norm.end(), inner_norm.begin(), inner_norm.end());
+  // The pose fit: the inner corners repeated `inner_weight` times (a weighted least squares).
+  std::vector<cv::Point3d> fit_object(defined.begin(), defined.begin() + 4);
+  std::vector<cv::Point2d> fit_image(outer);
+  for (int w = 0; w < std::max(1, options.inner_weight); ++w) {
+    fit_object.insert(fit_object.end(), defined.begin() + 4, defined.end());
+    fit_image.insert(fit_image.end(), inner_norm.begin(), inner_norm.end());
+  }
+  const cv::Mat I = cv::Mat::eye(3, 3, CV_64F);
+  std::vector<cv::Mat> rvecs, tvecs;
+  const int n = cv::solvePnPGeneric(fit_object, fit_image, I, cv::noArray(), rvecs, tvecs, false, cv::SOLVEPNP_IPPE);
+  if (n == 0) return result;
+  const double f = 0.5 * (camera.K(0, 0) + camera.K(1, 1));  // normalised -> pixel error scale
+  std::vector<Eigen::Isometry3d> poses;
+  std::vector<double> errors;
+  for (int s = 0; s < n; ++s) {
+    cv::Mat rvec = rvecs[s].clone(), tvec = tvecs[s].clone();
+    cv::solvePnPRefineLM(fit_object, fit_image, I, cv::noArray(), rvec, tvec,
+                         cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 50, 1e-12));
+    std::vector<cv::Point2d> reproj;
+    cv::projectPoints(defined, rvec, tvec, I, cv::noArray(), reproj);
+    double sq = 0;
+    for (size_t i = 0; i < reproj.size(); ++i) {
+      const cv::Point2d e = reproj[i] - image_norm[i];
+      sq += e.dot(e);
+    }
+    poses.push_back(toIsometry(cv::Vec3d(rvec), cv::Vec3d(tvec)));
+    errors.push_back(f * std::sqrt(sq / reproj.size()));
+  }
+  int chosen = 0;
+  if (n > 1) {
+    chosen = errors[1] < errors[0] ? 1 : 0;
+    const double lo = std::min(errors[0], errors[1]), hi = std::max(errors[0], errors[1]);
+    if (options.pose_hint && hi < options.ambiguity_ratio * std::max(lo, 1e-9)) {
+      // Ambiguous: keep the solution whose orientation is closer to the hint (temporal consistency).
+      chosen = rotationAngle(poses[0], *options.pose_hint) <= rotationAngle(poses[1], *options.pose_hint) ? 0 : 1;
+    }
+  }
+  result.found = true;
+  result.confidence = best.confidence;
+  result.rotation = best.rotation;
+  result.pose = poses[chosen];
+  result.reprojection_error = errors[chosen];
+  result.alt_pose = n > 1 ? poses[1 - chosen] : poses[chosen];
+  result.alt_reprojection_error = n > 1 ? errors[1 - chosen] : errors[chosen];
+  const std::vector<cv::Point2d> px = distort(image_norm, camera);
+  for (int i = 0; i < 8; ++i) result.points[i] = px[i];
+  return result;
+}
+
+}  // namespace marker
+}  // namespace imagenets

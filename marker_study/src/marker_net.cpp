@@ -1,0 +1,116 @@
+#include "marker_study/marker_net.h"
+
+#include <chrono>
+#include <limits>
+#include <sstream>
+
+#include <boost/filesystem.hpp>
+
+#include "imagenets/executor.h"
+#include "imagenets/net.h"
+
+namespace imagenets {
+namespace marker {
+
+namespace {
+
+void setProperty(BlockSpec& block, const std::string& name, const std::string& text) {
+  for (auto& p : block.properties) {
+    if (p.name == name) {
+      p.text = text;
+      return;
+    }
+  }
+  PropertySetting s;
+  s.name = name;
+  s.text = text;
+  s.loc = block.loc;
+  block.properties.push_back(s);
+}
+
+BlockSpec& findBlock(NetSpec& spec, const std::string& name) {
+  for (auto& b : spec.blocks) {
+    if (b.name == name) return b;
+  }
+  throw std::runtime_error(spec.origin + ": the marker detection net has no block '" + name + "'");
+}
+
+}  // namespace
+
+MarkerDetectionNet::MarkerDetectionNet(const std::string& net_path, const std::string& marker_path,
+                                       const ThresholdMode& mode, int threads)
+    : mode_(mode) {
+  NetSpec spec = parseNetFile(net_path);
+  // Feed the image and camera_info from memory instead of files.
+  for (const char* fed : {"source", "camera"}) {
+    auto& blocks = spec.blocks;
+    blocks.erase(std::remove_if(blocks.begin(), blocks.end(), [&](const BlockSpec& b) { return b.name == fed; }),
+                 blocks.end());
+    auto& links = spec.links;
+    links.erase(std::remove_if(links.begin(), links.end(), [&](const LinkSpec& l) { return l.from_block == fed; }),
+                links.end());
+  }
+  BlockSpec& threshold = findBlock(spec, "threshold");
+  if (mode.feedback) {
+    if (!threshold.feedback) throw std::runtime_error(net_path + ": block 'threshold' has no feedback");
+    threshold.feedback->values.clear();
+    for (double v = mode.from; v <= mode.to + 1e-9; v += mode.step) threshold.feedback->values.push_back(v);
+    threshold.feedback->from = mode.from;
+    threshold.feedback->to = mode.to;
+    threshold.feedback->step = mode.step;
+    threshold.feedback->search = mode.search;
+    threshold.feedback->parallel = mode.parallel;
+  } else {
+    threshold.feedback.reset();
+    setProperty(threshold, "threshold", std::to_string(mode.fixed));
+  }
+  setProperty(findBlock(spec, "detector"), "marker", boost::filesystem::absolute(marker_path).string());
+  ExecutorOptions options;
+  options.threads = threads;
+  executor_.reset(new Executor(Net::build(spec), options));
+}
+
+MarkerDetectionNet::~MarkerDetectionNet() = default;
+
+MarkerDetectionNet::Result MarkerDetectionNet::run(const sensor_msgs::ImageConstPtr& image,
+                                                   const sensor_msgs::CameraInfoConstPtr& camera_info) {
+  Result result;
+  const auto t0 = std::chrono::steady_clock::now();
+  executor_->setInput("gray.image", image);
+  executor_->setInput("detector.camera_info", camera_info);
+  const RunReport report = executor_->run();
+  result.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (mode_.feedback) result.trace = executor_->output<FeedbackTrace>("threshold.feedback_trace");
+  auto detection = boost::make_shared<imagenets::MarkerDetection>();
+  if (result.trace && !result.trace->found) {
+    // "No valid candidate": no threshold of the range found the marker. Not an error.
+    detection->found = false;
+    detection->confidence = 0.0;
+    detection->threshold = std::numeric_limits<double>::quiet_NaN();
+    detection->pose.orientation.w = detection->alternative_pose.orientation.w = 1.0;
+    detection->header = image->header;
+    result.detection = detection;
+    return result;
+  }
+  if (!report.ok()) {
+    std::ostringstream os;
+    for (size_t i = 0; i < report.failed.size(); ++i) os << (i ? "; " : "") << report.failed[i];
+    result.error = os.str();
+    return result;
+  }
+  const auto out = executor_->output<imagenets::MarkerDetection>("detector.detection");
+  if (!out) {
+    std::ostringstream os;
+    os << "the net produced no detector.detection";
+    for (const auto& n : report.not_run) os << "; " << n;
+    result.error = os.str();
+    return result;
+  }
+  *detection = *out;
+  detection->threshold = mode_.feedback ? result.trace->chosen_value : mode_.fixed;
+  result.detection = detection;
+  return result;
+}
+
+}  // namespace marker
+}  // namespace imagenets

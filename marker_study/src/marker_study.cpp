@@ -1,0 +1,375 @@
+// The marker accuracy study (see marker_study.h).
+#include "marker_study/marker_study.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include <boost/make_shared.hpp>
+
+#include <cv_bridge/cv_bridge.h>
+#include <opencv2/imgproc.hpp>
+
+#include "imagenets/vision/apriltag_marker.h"
+#include "imagenets/vision/marker.h"
+#include "imagenets/vision/marker_msgs.h"
+#include "marker_study/marker_net.h"
+#include "imagenets/vision/marker_scene.h"
+#include "imagenets/vision/read_camera_info.h"
+
+namespace imagenets {
+namespace marker {
+
+namespace {
+
+const double kDeg = M_PI / 180.0;
+
+std::vector<double> range(double from, double to, double step) {
+  std::vector<double> v;
+  for (double x = from; x <= to + 1e-9; x += step) v.push_back(x);
+  return v;
+}
+
+struct View {
+  double pan, tilt;
+  std::string lighting;
+  double illumination;
+  std::uint64_t seed;
+};
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const double pos = q * (v.size() - 1);
+  const size_t i = static_cast<size_t>(std::floor(pos));
+  const size_t j = std::min(i + 1, v.size() - 1);
+  return v[i] + (v[j] - v[i]) * (pos - i);
+}
+
+}  // namespace
+
+std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<void(int, int)>& progress) {
+  const MarkerDescription marker = MarkerDescription::load(config.marker);
+  auto info = boost::make_shared<sensor_msgs::CameraInfo>(readCameraInfo(config.camera));
+  info->header.frame_id = "camera_optical_frame";
+  const render::CameraModel camera = render::CameraModel::fromCameraInfo(*info);
+  const std::shared_ptr<const render::Renderer> renderer = sharedRenderer(camera, config.supersampling);
+
+  render::Plane square = markerPlane(marker, Eigen::Isometry3d::Identity());
+  applyPrintReflectance(&square);
+  AprilTagOptions april;
+  april.size = marker.size;
+  april.id = 0;
+  render::Plane tag = aprilTagPlane(april, 0, marker.margin, Eigen::Isometry3d::Identity());
+  applyPrintReflectance(&tag);
+
+  std::vector<View> views;
+  for (const auto& lighting : config.lightings) {
+    if (lighting != "even" && lighting != "varying") {
+      throw std::runtime_error("lighting '" + lighting + "' is neither 'even' nor 'varying'");
+    }
+    std::mt19937_64 rng(config.seed + (lighting == "varying" ? 1 : 0));
+    std::uniform_real_distribution<double> u(std::log(config.illumination_min), std::log(config.illumination_max));
+    for (double tilt : range(config.tilt_from, config.tilt_to, config.tilt_step)) {
+      for (double pan : range(config.pan_from, config.pan_to, config.pan_step)) {
+        const double illumination = lighting == "even" ? 1.0 : std::exp(u(rng));
+        views.push_back({pan, tilt, lighting, illumination, rng()});
+      }
+    }
+  }
+
+  ThresholdMode fixed_mode, feedback_mode;
+  fixed_mode.feedback = false;
+  fixed_mode.fixed = config.fixed_threshold;
+  feedback_mode.from = config.feedback_from;
+  feedback_mode.to = config.feedback_to;
+  feedback_mode.step = config.feedback_step;
+  feedback_mode.parallel = false;  // the views run in parallel already
+  // Built once here so a bad net file fails before any thread starts.
+  { MarkerDetectionNet check(config.net, config.marker, feedback_mode, 1); }
+
+  const std::string fixed_name = "fixed" + std::to_string(config.fixed_threshold);
+  std::vector<std::array<StudyRow, 3>> results(views.size());
+  std::atomic<size_t> next{0};
+  std::atomic<int> done{0};
+  std::mutex progress_mutex;
+  std::string first_error;
+  auto worker = [&]() {
+    try {
+      MarkerDetectionNet fixed_net(config.net, config.marker, fixed_mode, 1);
+      MarkerDetectionNet feedback_net(config.net, config.marker, feedback_mode, 1);
+      const AprilTagDetector april_detector(april);
+      for (size_t i; (i = next++) < views.size();) {
+        const View& v = views[i];
+        ViewSettings settings;
+        settings.distance = config.distance;
+        settings.pan = v.pan * kDeg;
+        settings.tilt = v.tilt * kDeg;
+        settings.illumination = v.illumination;
+        settings.seed = v.seed;
+        Eigen::Isometry3d truth;
+        const cv::Mat square_image = renderView(*renderer, square, settings, &truth);
+        const cv::Mat tag_image = renderView(*renderer, tag, settings, nullptr);
+        std_msgs::Header header;
+        header.frame_id = info->header.frame_id;
+        const sensor_msgs::ImageConstPtr msg = cv_bridge::CvImage(header, "mono8", square_image).toImageMsg();
+
+        auto row = [&](const std::string& method) {
+          StudyRow r;
+          r.pan = v.pan;
+          r.tilt = v.tilt;
+          r.lighting = v.lighting;
+          r.illumination = v.illumination;
+          r.method = method;
+          r.threshold = std::numeric_limits<double>::quiet_NaN();
+          return r;
+        };
+        auto score = [&](StudyRow& r, const Eigen::Isometry3d& pose) {
+          r.position_error_mm = 1000.0 * (pose.translation() - truth.translation()).norm();
+          r.orientation_error_deg = rotationAngle(pose, truth) / kDeg;
+        };
+        int m = 0;
+        for (MarkerDetectionNet* net : {&fixed_net, &feedback_net}) {
+          StudyRow r = row(m == 0 ? fixed_name : "feedback");
+          const MarkerDetectionNet::Result res = net->run(msg, info);
+          if (!res.error.empty()) throw std::runtime_error(res.error);
+          r.ms = res.ms;
+          r.found = res.detection->found;
+          if (r.found) {
+            r.threshold = res.detection->threshold;
+            score(r, fromPoseMsg(res.detection->pose));
+          }
+          results[i][m++] = r;
+        }
+        StudyRow r = row("apriltag");
+        const auto t0 = std::chrono::steady_clock::now();
+        const Detection d = april_detector.detect(tag_image, camera);
+        r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        r.found = d.found;
+        if (d.found) score(r, d.pose);
+        results[i][2] = r;
+        const int n = ++done;
+        if (progress) {
+          std::lock_guard<std::mutex> lock(progress_mutex);
+          progress(n, static_cast<int>(views.size()));
+        }
+      }
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      if (first_error.empty()) first_error = e.what();
+      next = views.size();
+    }
+  };
+  int threads = config.threads > 0 ? config.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  if (!first_error.empty()) throw std::runtime_error("marker study: " + first_error);
+
+  std::vector<StudyRow> rows;
+  for (const auto& r : results) rows.insert(rows.end(), r.begin(), r.end());
+  return rows;
+}
+
+std::vector<StudySummaryRow> summarize(const std::vector<StudyRow>& rows) {
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const auto& r : rows) {
+    const auto key = std::make_pair(r.method, r.lighting);
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  }
+  std::sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) {
+    return a.second != b.second ? a.second < b.second : a.first > b.first;  // lighting, then method
+  });
+  std::vector<StudySummaryRow> out;
+  for (const auto& key : keys) {
+    StudySummaryRow s;
+    s.method = key.first;
+    s.lighting = key.second;
+    std::vector<double> mm, deg, ms;
+    for (const auto& r : rows) {
+      if (r.method != key.first || r.lighting != key.second) continue;
+      ++s.images;
+      ms.push_back(r.ms);
+      if (!r.found) continue;
+      ++s.found;
+      mm.push_back(r.position_error_mm);
+      deg.push_back(r.orientation_error_deg);
+    }
+    s.median_mm = percentile(mm, 0.5);
+    s.p95_mm = percentile(mm, 0.95);
+    s.max_mm = percentile(mm, 1.0);
+    s.median_deg = percentile(deg, 0.5);
+    s.max_deg = percentile(deg, 1.0);
+    s.median_ms = percentile(ms, 0.5);
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::string toCsv(const std::vector<StudyRow>& rows) {
+  std::ostringstream os;
+  os << "pan_deg,tilt_deg,lighting,illumination,method,found,position_error_mm,orientation_error_deg,threshold,time_ms\n";
+  os << std::fixed;
+  for (const auto& r : rows) {
+    os << std::setprecision(0) << r.pan << "," << r.tilt << "," << r.lighting << "," << std::setprecision(3)
+       << r.illumination << "," << r.method << "," << (r.found ? 1 : 0) << ",";
+    if (r.found) os << std::setprecision(4) << r.position_error_mm << "," << r.orientation_error_deg << ",";
+    else os << ",,";
+    if (std::isfinite(r.threshold)) os << std::setprecision(0) << r.threshold;
+    os << "," << std::setprecision(2) << r.ms << "\n";
+  }
+  return os.str();
+}
+
+std::vector<StudyRow> fromCsv(const std::string& csv) {
+  std::vector<StudyRow> rows;
+  std::istringstream in(csv);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    if (++n == 1 || line.empty()) continue;  // header
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    std::string cell;
+    while (std::getline(ls, cell, ',')) f.push_back(cell);
+    if (f.size() == 9 && line.back() == ',') f.push_back("");
+    if (f.size() != 10) throw std::runtime_error("study CSV line " + std::to_string(n) + ": expected 10 fields");
+    try {
+      StudyRow r;
+      r.pan = std::stod(f[0]);
+      r.tilt = std::stod(f[1]);
+      r.lighting = f[2];
+      r.illumination = std::stod(f[3]);
+      r.method = f[4];
+      r.found = f[5] == "1";
+      if (r.found) {
+        r.position_error_mm = std::stod(f[6]);
+        r.orientation_error_deg = std::stod(f[7]);
+      }
+      r.threshold = f[8].empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(f[8]);
+      r.ms = f[9].empty() ? 0.0 : std::stod(f[9]);
+      rows.push_back(r);
+    } catch (const std::logic_error&) {
+      throw std::runtime_error("study CSV line " + std::to_string(n) + ": bad number");
+    }
+  }
+  return rows;
+}
+
+std::string toMarkdown(const std::vector<StudySummaryRow>& summary, const StudyConfig& config) {
+  std::ostringstream os;
+  os << "| lighting | method | detected | median pos. error mm | p95 mm | max mm | median orient. error deg | max deg | median time ms |\n";
+  os << "|---|---|---|---|---|---|---|---|---|\n";
+  os << std::fixed;
+  for (const auto& s : summary) {
+    os << "| " << s.lighting << " | " << s.method << " | " << s.found << "/" << s.images << " ("
+       << std::setprecision(1) << 100.0 * s.found / std::max(1, s.images) << " %) | " << std::setprecision(3)
+       << s.median_mm << " | " << s.p95_mm << " | " << s.max_mm << " | " << s.median_deg << " | " << s.max_deg
+       << " | " << std::setprecision(1) << s.median_ms << " |\n";
+  }
+  os << std::setprecision(0) << "\nMarker " << config.marker << ", camera " << config.camera << ", distance "
+     << config.distance * 1000 << " mm, tilt " << config.tilt_from << ".." << config.tilt_to << " step "
+     << config.tilt_step << " deg, pan " << config.pan_from << ".." << config.pan_to << " step " << config.pan_step
+     << " deg; varying illumination " << std::setprecision(2) << config.illumination_min << ".."
+     << config.illumination_max << " (log-uniform), seed " << config.seed << ".\n";
+  return os.str();
+}
+
+cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& lighting, double scale_mm) {
+  std::vector<double> pans, tilts;
+  std::vector<std::string> methods;
+  for (const auto& r : rows) {
+    if (r.lighting != lighting) continue;
+    if (std::find(pans.begin(), pans.end(), r.pan) == pans.end()) pans.push_back(r.pan);
+    if (std::find(tilts.begin(), tilts.end(), r.tilt) == tilts.end()) tilts.push_back(r.tilt);
+    if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) methods.push_back(r.method);
+  }
+  std::sort(pans.begin(), pans.end());
+  std::sort(tilts.begin(), tilts.end());
+  const int cell = 24, left = 50, top = 40, gap = 70, bar = 80;
+  const int panel_w = static_cast<int>(pans.size()) * cell, panel_h = static_cast<int>(tilts.size()) * cell;
+  const int width = std::max(460, left + panel_w + bar + 40);
+  const int height = top + 20 + static_cast<int>(methods.size()) * (panel_h + gap) + 10;
+  cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  cv::Mat ramp(256, 1, CV_8UC1);
+  for (int i = 0; i < 256; ++i) ramp.at<uchar>(i) = static_cast<uchar>(i);
+  cv::Mat colours;
+  cv::applyColorMap(ramp, colours, cv::COLORMAP_VIRIDIS);
+  const double lo = 0.01;  // mm: the bottom of the logarithmic scale
+  const double hi = std::max(scale_mm, 10 * lo);
+  auto level = [&](double mm) { return (std::log10(std::max(mm, lo)) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)); };
+  auto colourOf = [&](double mm) {
+    const int i = std::max(0, std::min(255, static_cast<int>(std::lround(255.0 * level(mm)))));
+    const cv::Vec3b c = colours.at<cv::Vec3b>(i);
+    return cv::Scalar(c[0], c[1], c[2]);
+  };
+  const auto font = cv::FONT_HERSHEY_SIMPLEX;
+  cv::putText(img, "position error [mm], " + lighting + " lighting", cv::Point(left, 22), font, 0.6, cv::Scalar(0, 0, 0), 1,
+              cv::LINE_AA);
+  for (size_t m = 0; m < methods.size(); ++m) {
+    const int y0 = top + 20 + static_cast<int>(m) * (panel_h + gap);
+    cv::putText(img, methods[m], cv::Point(left, y0 - 6), font, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    for (const auto& r : rows) {
+      if (r.lighting != lighting || r.method != methods[m]) continue;
+      const int cx = static_cast<int>(std::find(pans.begin(), pans.end(), r.pan) - pans.begin());
+      const int cy = static_cast<int>(std::find(tilts.begin(), tilts.end(), r.tilt) - tilts.begin());
+      const cv::Rect box(left + cx * cell, y0 + cy * cell, cell, cell);
+      if (r.found) {
+        cv::rectangle(img, box, colourOf(r.position_error_mm), cv::FILLED);
+      } else {
+        cv::rectangle(img, box, cv::Scalar(160, 160, 160), cv::FILLED);
+        cv::line(img, box.tl(), box.br() - cv::Point(1, 1), cv::Scalar(0, 0, 255), 1);
+        cv::line(img, cv::Point(box.x, box.y + cell - 1), cv::Point(box.x + cell - 1, box.y), cv::Scalar(0, 0, 255), 1);
+      }
+    }
+    cv::rectangle(img, cv::Rect(left, y0, panel_w, panel_h), cv::Scalar(0, 0, 0), 1);
+    for (size_t t = 0; t < tilts.size(); ++t) {
+      std::ostringstream s;
+      s << tilts[t];
+      cv::putText(img, s.str(), cv::Point(left - 20, y0 + static_cast<int>(t) * cell + 16), font, 0.35,
+                  cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    }
+    for (size_t p = 0; p < pans.size(); p += std::max<size_t>(1, pans.size() / 12)) {
+      std::ostringstream s;
+      s << pans[p];
+      cv::putText(img, s.str(), cv::Point(left + static_cast<int>(p) * cell + 2, y0 + panel_h + 14), font, 0.35,
+                  cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    }
+    cv::putText(img, "pan [deg] ->", cv::Point(left + panel_w - 90, y0 + panel_h + 30), font, 0.4, cv::Scalar(0, 0, 0),
+                1, cv::LINE_AA);
+    cv::putText(img, "tilt", cv::Point(left - 45, y0 + panel_h / 2 + 4), font, 0.35, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  }
+  // Colour bar.
+  const int bx = left + panel_w + 20, by = top + 20, bh = std::max(120, panel_h * 2);
+  for (int i = 0; i < bh; ++i) {
+    const double mm = lo * std::pow(hi / lo, i / (bh - 1.0));
+    cv::line(img, cv::Point(bx, by + bh - 1 - i), cv::Point(bx + 16, by + bh - 1 - i), colourOf(mm), 1);
+  }
+  cv::rectangle(img, cv::Rect(bx, by, 17, bh), cv::Scalar(0, 0, 0), 1);
+  std::vector<double> ticks;
+  for (double t = lo; t <= hi * 1.0001; t *= 10) ticks.push_back(t);
+  if (hi / ticks.back() > 1.5) ticks.push_back(hi);
+  for (double t : ticks) {
+    std::ostringstream s;
+    s << (t < 0.1 ? std::setprecision(2) : std::setprecision(t < 1 ? 1 : 0)) << std::fixed << t;
+    if (t == hi) s << "+";
+    const int y = by + bh - 1 - static_cast<int>(std::lround(level(t) * (bh - 1)));
+    cv::line(img, cv::Point(bx + 17, y), cv::Point(bx + 21, y), cv::Scalar(0, 0, 0), 1);
+    cv::putText(img, s.str(), cv::Point(bx + 24, y + 4), font, 0.35, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  }
+  cv::putText(img, "mm (log)", cv::Point(bx - 5, by - 6), font, 0.35, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(img, "x = not found", cv::Point(bx - 5, by + bh + 20), font, 0.35, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+  return img;
+}
+
+}  // namespace marker
+}  // namespace imagenets
