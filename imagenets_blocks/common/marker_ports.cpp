@@ -5,20 +5,15 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <std_msgs/Float64.h>
 
+#include "camera_ports.h"
 #include "imagenets/vision/frames.h"
 
 namespace imagenets {
 namespace marker {
 
 render::CameraModel inputCameraModel(const Context& ctx, const cv::Mat& gray, cv::Point2d* offset) {
+  render::CameraModel camera = blocks::inputCameraModel(ctx, "camera_info");
   const auto info = ctx.input<sensor_msgs::CameraInfo>("camera_info");
-  if (!info) throw BlockError("input 'camera_info': missing");
-  render::CameraModel camera;
-  try {
-    camera = render::CameraModel::fromCameraInfo(*info);
-  } catch (const std::exception& e) {
-    throw BlockError(std::string("input 'camera_info': ") + e.what());
-  }
   const sensor_msgs::RegionOfInterest& roi = info->roi;
   if (roi.width > 0 && roi.height > 0) {
     const cv::Rect region(roi.x_offset, roi.y_offset, roi.width, roi.height);

@@ -10,6 +10,7 @@
 #include "imagenets/vision/marker_msgs.h"
 #include "imagenets/vision/marker_scene.h"
 #include "imagenets/register_block.h"
+#include "camera_ports.h"
 
 namespace imagenets {
 namespace blocks {
@@ -43,13 +44,7 @@ class MarkerRenderer : public Block {
 
   void process(Context& ctx) override {
     const auto info = ctx.input<sensor_msgs::CameraInfo>("camera_info");
-    if (!info) throw BlockError("input 'camera_info': missing");
-    render::CameraModel camera;
-    try {
-      camera = render::CameraModel::fromCameraInfo(*info);
-    } catch (const std::exception& e) {
-      throw BlockError(std::string("input 'camera_info': ") + e.what());
-    }
+    const render::CameraModel camera = inputCameraModel(ctx, "camera_info");
     const std::string marker_path = ctx.property<std::string>("marker");
     render::Plane plane;
     try {

@@ -4,6 +4,7 @@
 #include "imagenets/blocks/image.h"
 #include "imagenets/vision/render.h"
 #include "imagenets/register_block.h"
+#include "camera_ports.h"
 
 namespace imagenets {
 namespace blocks {
@@ -30,12 +31,7 @@ class CropAroundPose : public Block {
     std_msgs::Header header;
     const cv::Mat in = inputImage(ctx, "image", {}, &encoding, &header);
     const auto info = ctx.input<sensor_msgs::CameraInfo>("camera_info");
-    render::CameraModel camera;
-    try {
-      camera = render::CameraModel::fromCameraInfo(*info);
-    } catch (const std::exception& e) {
-      throw BlockError(std::string("input 'camera_info': ") + e.what());
-    }
+    const render::CameraModel camera = inputCameraModel(ctx, "camera_info");
     if (info->roi.width > 0 || info->roi.height > 0) {
       throw BlockError("input 'camera_info' already describes a region (roi " + std::to_string(info->roi.width) + "x" +
                        std::to_string(info->roi.height) + "); crop the full image");
