@@ -97,7 +97,7 @@ int run(const Args& args) {
   }
   const auto summary = marker::summarize(rows);
   writeAtomically(out_dir + "/study.csv", marker::toCsv(rows));
-  const std::string table = marker::toMarkdown(summary, config) + "\nThe default detection (`detect`) beside libapriltag, with issue 15's targets:\n\n" +
+  const std::string table = marker::toMarkdown(summary, config) + "\nOur nets (`detect`: the default, `calibration`) beside libapriltag, with issue 15's targets:\n\n" +
                             marker::sideBySideMarkdown(summary);
   writeAtomically(out_dir + "/summary.md", table);
   if (!(scale_mm > 0)) {
