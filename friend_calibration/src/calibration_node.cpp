@@ -43,6 +43,7 @@ void fill(Out& out, const Result& r, const std::string& base, const std::string&
   out.fixed_point = imagenets::frames::toTransformStamped(r.fixed_point, base, child, ros::Time::now());
   out.std_dev_translation = imagenets::frames::toVector3Msg(r.std_translation);
   out.std_dev_rotation = imagenets::frames::toVector3Msg(r.std_rotation);
+  std::copy(r.fixed_point_covariance.data(), r.fixed_point_covariance.data() + 36, out.fixed_point_covariance.begin());
   out.samples_used = static_cast<int>(r.used.size());
   out.samples_rejected = static_cast<int>(r.rejected.size());
   out.rejected_samples = r.rejected;

@@ -2,13 +2,18 @@
 // truth: random true robots (the simulator's own error drawing), the joint method's ten poses,
 // the marker's 8 points projected through the true geometry and the description's camera models
 // with pixel noise, each detection's pose fitted to its noisy points as the detector does.
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
 #include <random>
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 
 #include "friend_calibration/bundle_adjustment.h"
+#include "friend_calibration/calibration_msgs.h"
+#include "friend_calibration/storage.h"
 #include "friend_hw_sim/true_robot.h"
 
 namespace friend_calibration {
@@ -153,6 +158,35 @@ TEST_F(BundleAdjustmentTest, DetectionsWhosePointsDoNotFitTheCameraModelAreNotUs
   EXPECT_NE(r.message.find("pixel-level fit skipped: 0 detections with points that fit the camera model (20 do not)"),
             std::string::npos)
       << r.message;
+}
+
+TEST_F(BundleAdjustmentTest, TheUncertaintyTravelsThroughTheFileAndTheMessageAndOldFilesStillLoad) {
+  const Result r = calibrate(model, simulate(2, 0.05).samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r.has_covariance) << r.message;
+  EXPECT_GT(r.reprojection_rms, 0.0);
+  EXPECT_GT(r.arm_joint_offset_std[1], 0.0);
+  EXPECT_EQ(r.arm_joint_offset_std[0], 0.0);  // not estimated
+  const auto dir = std::filesystem::temp_directory_path() / ("bundle_adjustment_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  StoredCalibration stored;
+  stored.result = r;
+  ASSERT_EQ(saveCalibration(stored, (dir / "new.yaml").string()), "");
+  const Result loaded = loadCalibration((dir / "new.yaml").string()).result;
+  EXPECT_TRUE(loaded.has_covariance);
+  EXPECT_LT((loaded.fixed_point_covariance - r.fixed_point_covariance).norm(), 1e-12 * r.fixed_point_covariance.norm());
+  EXPECT_LT((loaded.marker_offset_covariance - r.marker_offset_covariance).norm(), 1e-12 * r.marker_offset_covariance.norm());
+  EXPECT_EQ(loaded.head_joint_offset_std, r.head_joint_offset_std);
+  const Result via_msg = fromMsg(toMsg(r, "base_link", "pth_fixed_point"));
+  EXPECT_TRUE(via_msg.has_covariance);
+  EXPECT_EQ(via_msg.fixed_point_covariance, r.fixed_point_covariance);
+  EXPECT_EQ(via_msg.arm_joint_offset_std, r.arm_joint_offset_std);
+  // A file written before the pixel-level fit (no covariance keys) loads without one.
+  stored.result.has_covariance = false;
+  ASSERT_EQ(saveCalibration(stored, (dir / "old.yaml").string()), "");
+  const Result old = loadCalibration((dir / "old.yaml").string()).result;
+  EXPECT_FALSE(old.has_covariance);
+  EXPECT_EQ(old.fixed_point_covariance, (Eigen::Matrix<double, 6, 6>::Zero()));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
