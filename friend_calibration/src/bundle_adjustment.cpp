@@ -88,6 +88,8 @@ struct DetectionResidual {
   std::vector<Eigen::Vector2d> observed;
   Eigen::Isometry3d x0, m0;
   double sigma;
+  bool robust;
+  double huber;  // sigmas
 
   template <typename T>
   bool operator()(T const* const* p, T* residuals) const {
@@ -114,8 +116,21 @@ struct DetectionResidual {
       const Eigen::Matrix<T, 3, 1> pc =
           marker_in_camera.template topLeftCorner<3, 3>() * points[i].cast<T>() + marker_in_camera.template topRightCorner<3, 1>();
       const Eigen::Matrix<T, 2, 1> uv = projectPoint(*camera, pc);
-      residuals[2 * i] = (uv.x() - T(observed[i].x())) / T(sigma);
-      residuals[2 * i + 1] = (uv.y() - T(observed[i].y())) / T(sigma);
+      T ex = (uv.x() - T(observed[i].x())) / T(sigma), ey = (uv.y() - T(observed[i].y())) / T(sigma);
+      // Huber loss per point, applied to the residual itself (its square is rho(|e|^2) =
+      // 2 k |e| - k^2 beyond k): Ceres' loss functions act on a whole block, and one block per
+      // detection evaluates the kinematic chain once for its 8 points.
+      if (robust) {
+        using std::sqrt;
+        const T s = ex * ex + ey * ey;
+        if (s > T(huber * huber)) {
+          const T scale = sqrt(T(2 * huber) * sqrt(s) - T(huber * huber)) / sqrt(s);
+          ex *= scale;
+          ey *= scale;
+        }
+      }
+      residuals[2 * i] = ex;
+      residuals[2 * i + 1] = ey;
     }
     return true;
   }
@@ -232,20 +247,19 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
     std::vector<double*> blocks{x, m};
     if (!arm.empty()) blocks.push_back(arm.data());
     if (!head.empty()) blocks.push_back(head.data());
-    // One residual block per point: the robust loss acts on each point's distance.
     for (const Use& u : uses) {
       const MarkerObservation& o = u.right ? u.sample->right : u.sample->left;
-      for (size_t i = 0; i < marker_points.size(); ++i) {
-        auto* f = new DetectionResidual{&model, &layout, u.right ? &cameras.right : &cameras.left, u.sample, u.right,
-                                        {marker_points[i]}, {o.points[i]}, start.fixed_point, start.marker_offset, sigma};
-        auto* cost = new ceres::DynamicAutoDiffCostFunction<DetectionResidual, 6>(f);
-        cost->AddParameterBlock(6);
-        cost->AddParameterBlock(6);
-        if (!arm.empty()) cost->AddParameterBlock(static_cast<int>(arm.size()));
-        if (!head.empty()) cost->AddParameterBlock(static_cast<int>(head.size()));
-        cost->SetNumResiduals(2);
-        problem.AddResidualBlock(cost, new ceres::HuberLoss(options.huber_sigmas), blocks);
-      }
+      auto* f = new DetectionResidual{&model, &layout, u.right ? &cameras.right : &cameras.left, u.sample, u.right,
+                                      marker_points, o.points, start.fixed_point, start.marker_offset, sigma, true,
+                                      options.huber_sigmas};
+      // Stride 18: FRIEND's 18 parameters in one pass of dual numbers.
+      auto* cost = new ceres::DynamicAutoDiffCostFunction<DetectionResidual, 18>(f);
+      cost->AddParameterBlock(6);
+      cost->AddParameterBlock(6);
+      if (!arm.empty()) cost->AddParameterBlock(static_cast<int>(arm.size()));
+      if (!head.empty()) cost->AddParameterBlock(static_cast<int>(head.size()));
+      cost->SetNumResiduals(static_cast<int>(2 * marker_points.size()));
+      problem.AddResidualBlock(cost, nullptr, blocks);
     }
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<MarkerPrior, 6, 6>(
                                  new MarkerPrior{start.marker_offset, d.marker.pose, prior_translation, prior_rotation}),
@@ -307,7 +321,7 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
     for (const Use& u : uses) {
       const MarkerObservation& o = u.right ? u.sample->right : u.sample->left;
       DetectionResidual f{&model, &layout, u.right ? &cameras.right : &cameras.left, u.sample, u.right,
-                          marker_points, o.points, start.fixed_point, start.marker_offset, 1.0};
+                          marker_points, o.points, start.fixed_point, start.marker_offset, 1.0, false, 0.0};
       std::vector<double> e(2 * marker_points.size());
       f(p, e.data());
       r.insert(r.end(), e.begin(), e.end());
