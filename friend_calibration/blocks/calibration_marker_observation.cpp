@@ -7,6 +7,7 @@
 #include <imagenets/MarkerObservation.h>
 #include <std_msgs/String.h>
 
+#include "friend_calibration/calibration_msgs.h"
 #include "imagenets/register_block.h"
 
 namespace friend_calibration {
@@ -25,19 +26,10 @@ class CalibrationMarkerObservation : public imagenets::Block {
     const auto detection = ctx.input<imagenets::MarkerDetection>("detection");
     const auto trace = ctx.input<imagenets::FeedbackTrace>("feedback_trace");
     const auto failure = ctx.input<std_msgs::String>("failure");
-    auto o = boost::make_shared<imagenets::MarkerObservation>();
-    o->pose.orientation.w = 1;
-    if (detection && detection->found && trace) {
-      o->found = true;
-      o->pose = detection->pose;
-      o->confidence = detection->confidence;
-      o->threshold = trace->chosen_value;
-      o->reprojection_error = detection->reprojection_error;
-      o->points = detection->points;
-    } else {
-      o->reason = failure ? failure->data
-                          : detection ? "marker lost when its corners were refined" : "the detection gave no result";
-    }
+    const std::string why_not =
+        failure ? failure->data : detection ? "marker lost when its corners were refined" : "the detection gave no result";
+    auto o = boost::make_shared<imagenets::MarkerObservation>(
+        toMsg(observationOf(detection.get(), trace.get(), why_not)));
     ctx.output("observation", o);
   }
 };

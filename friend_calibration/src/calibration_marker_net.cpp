@@ -1,5 +1,7 @@
 #include "friend_calibration/calibration_marker_net.h"
 
+#include "friend_calibration/calibration_msgs.h"
+
 #include <limits>
 #include <stdexcept>
 
@@ -51,7 +53,6 @@ MarkerObservation CalibrationMarkerNet::detect(const sensor_msgs::ImageConstPtr&
   std::vector<size_t> failures_before;
   for (const auto& n : nodes) failures_before.push_back(executor_->stats(n.name).failures);
   const imagenets::RunReport report = executor_->run();
-  MarkerObservation obs;
   const auto detection = executor_->output<imagenets::MarkerDetection>("detector.detection");
   const auto trace = lastTrace();
   std::string message;
@@ -63,17 +64,8 @@ MarkerObservation CalibrationMarkerNet::detect(const sensor_msgs::ImageConstPtr&
     if (stats.failures > failures_before[i]) message = "block '" + nodes[i].name + "': " + stats.last_error;
   }
   if (!message.empty()) throw std::invalid_argument(executor_->net().origin() + ": " + message);
-  if (!detection || !detection->found) {
-    obs.reason = report.ok() ? "marker lost when its corners were refined" : report.failed.front();
-    return obs;
-  }
-  obs.found = true;
-  obs.confidence = detection->confidence;
-  obs.threshold = trace ? trace->chosen_value : std::numeric_limits<double>::quiet_NaN();
-  obs.reprojection_error = detection->reprojection_error;
-  obs.pose = imagenets::marker::fromPoseMsg(detection->pose);
-  for (const auto& p : detection->points) obs.points.emplace_back(p.x, p.y);
-  return obs;
+  return observationOf(detection.get(), trace.get(),
+                       report.ok() ? "marker lost when its corners were refined" : report.failed.front());
 }
 
 boost::shared_ptr<const imagenets::FeedbackTrace> CalibrationMarkerNet::lastTrace() const {

@@ -1,11 +1,28 @@
 #include "friend_calibration/calibration_msgs.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "imagenets/vision/frames.h"
 
 namespace friend_calibration {
 namespace frames = imagenets::frames;
+
+MarkerObservation observationOf(const imagenets::MarkerDetection* detection, const imagenets::FeedbackTrace* trace,
+                                const std::string& why_not) {
+  MarkerObservation o;
+  if (!detection || !detection->found) {
+    o.reason = why_not;
+    return o;
+  }
+  o.found = true;
+  o.confidence = detection->confidence;
+  o.threshold = trace ? trace->chosen_value : std::numeric_limits<double>::quiet_NaN();
+  o.reprojection_error = detection->reprojection_error;
+  o.pose = frames::toIsometry(detection->pose, "detection pose");
+  for (const auto& p : detection->points) o.points.emplace_back(p.x, p.y);
+  return o;
+}
 
 imagenets::MarkerObservation toMsg(const MarkerObservation& o) {
   imagenets::MarkerObservation m;

@@ -1,28 +1,29 @@
 #include "friend_calibration/calibration_node.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <future>
 #include <sstream>
 #include <stdexcept>
 
+#include <boost/filesystem.hpp>
 #include <cv_bridge/cv_bridge.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <std_srvs/Trigger.h>
 #include <geometry_msgs/TransformStamped.h>
+#include <imagenets/CalibrationResult.h>
+#include <imagenets/CalibrationSample.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "imagenets/executor.h"
+#include "friend_calibration/calibration_msgs.h"
 #include "imagenets/vision/frames.h"
+#include "imagenets/inner_net.h"
 #include "robot_description/joint_state.h"
 
 namespace friend_calibration {
 namespace {
-
-constexpr double kDeg = M_PI / 180.0;
 
 std::string packageFile(const std::string& rel) {
   const std::string desc = robot_description::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
@@ -100,21 +101,9 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
           pnh.param<std::string>("description", robot_description::defaultRobotDescriptionPath()))),
       marker_(imagenets::marker::MarkerDescription::load(
           pnh.param<std::string>("marker", packageFile("config/markers/gripper.yaml")))) {
-  // The robust detection is the net; the node's marker file is its detector's property.
-  for (auto& net : detection_nets_) {
-    net = std::make_unique<CalibrationMarkerNet>();
-    net->executor().setPropertyText("detector", "marker",
-                                    pnh_.param<std::string>("marker", packageFile("config/markers/gripper.yaml")));
-  }
   calibration_file_ = pnh_.param<std::string>("calibration_file", defaultCalibrationFile());
   default_redundancy_ = pnh_.param("redundancy", 5);
   default_method_ = pnh_.param<std::string>("method", "joint");
-  server_timeout_ = pnh_.param("server_timeout", 10.0);
-  camera_timeout_ = pnh_.param("camera_timeout", 3.0);
-  motion_timeout_ = pnh_.param("motion_timeout", 60.0);
-  speed_scale_ = pnh_.param("speed_scale", 1.0);
-  settle_time_ = pnh_.param("settle_time", 0.0);
-  reapproach_ = pnh_.param("reapproach", true);
   poses_per_loop_ = pnh_.param("poses_per_loop", 2);
   min_valid_fraction_ = pnh_.param("min_valid_fraction", 0.5);
   fusion_.max_position_difference = pnh_.param("fusion/max_position_difference", fusion_.max_position_difference);
@@ -123,22 +112,18 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     ROS_WARN("marker file says %.3f m, robot description %.3f m: using the marker file's size", marker_.size,
              model_.description().marker_size);
   }
+  // The nets, once. A bad net is reported (and every request answers with it); the node keeps
+  // serving the previous calibration.
+  net_file_ = pnh_.param<std::string>("net", packageFile("config/nets/calibration.yaml"));
+  try {
+    loadNets(net_file_, pnh_.param<std::string>("replay_net", packageFile("config/nets/calibration_sample_replay.yaml")));
+  } catch (const std::exception& e) {
+    net_error_ = e.what();
+    ROS_ERROR("friend_calibration: the calibration net is not usable: %s", net_error_.c_str());
+  }
 
-  arm_action_ = pnh_.param<std::string>("arm_action", "arm/move_joints");
-  head_action_ = pnh_.param<std::string>("head_action", "head/move_joints");
   joint_sub_ = nh_.subscribe(pnh_.param<std::string>("joint_states", "joint_states"), 20,
                              &CalibrationNode::onJointStates, this);
-  const std::string stereo = pnh_.param<std::string>("stereo_namespace", "stereo");
-  for (int i = 0; i < 2; ++i) {
-    const std::string side = i == 0 ? "/left" : "/right";
-    image_sub_[i] = nh_.subscribe<sensor_msgs::Image>(stereo + side + "/image_raw", 4,
-                                                      [this, i](const sensor_msgs::ImageConstPtr& m) { onImage(m, i == 0); });
-    info_sub_[i] = nh_.subscribe<sensor_msgs::CameraInfo>(
-        stereo + side + "/camera_info", 4, [this, i](const sensor_msgs::CameraInfoConstPtr& m) { onCameraInfo(m, i == 0); });
-  }
-  // Cameras that render on request (the simulator with camera/rate 0, or a triggered real camera).
-  const std::string trigger = pnh_.param<std::string>("trigger_service", stereo + "/trigger");
-  if (!trigger.empty()) trigger_ = nh_.serviceClient<std_srvs::Trigger>(trigger);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   for (int i = 0; i < 2; ++i) {
     const std::string side = i == 0 ? "detections/left/" : "detections/right/";
@@ -148,15 +133,14 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 
   // The last saved calibration (or a replayed file) is published at start-up.
   const std::string replay = pnh_.param<std::string>("replay", "");
-  const auto& base = model_.description().base_frame;
   try {
     if (!replay.empty()) {
-      const StoredCalibration stored = loadCalibration(replay);
-      const Result r = calibrate(model_, stored.result.samples, stored.result.method, fusion_, combine_);
-      if (!r.success) throw std::runtime_error("replay of '" + replay + "' failed: " + r.message);
-      ROS_INFO("replayed %s: %s", replay.c_str(), r.message.c_str());
-      publish(r, child_frame_);
-      publishSampleMarkers(r);
+      imagenets::Calibrate::Request req;
+      req.replay = replay;
+      req.method = default_method_;
+      const auto res = run(req, {});
+      if (!res.success) throw std::runtime_error(res.message);
+      ROS_INFO("%s", res.message.c_str());
     } else if (std::ifstream(calibration_file_).good()) {
       const StoredCalibration stored = loadCalibration(calibration_file_);
       publish(stored.result, child_frame_);
@@ -175,20 +159,51 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     nominal.fixed_point = model_.headBase();
     publish(nominal, child_frame_);
   }
-  (void)base;
 
   service_ = pnh_.advertiseService("calibrate", &CalibrationNode::onService, this);
   action_ = std::make_unique<actionlib::SimpleActionServer<imagenets::CalibrateAction>>(
       pnh_, "calibrate_action", [this](const imagenets::CalibrateGoalConstPtr& g) { onAction(g); }, false);
+  action_->registerPreemptCallback([this] { cancel(); });
   action_->start();
-  ROS_INFO("friend_calibration: ready (%s, default redundancy %d, method %s, file %s)", model_.description().source.c_str(),
-           default_redundancy_, default_method_.c_str(), calibration_file_.c_str());
+  ROS_INFO("friend_calibration: ready (%s, net %s, default redundancy %d, method %s, file %s)",
+           model_.description().source.c_str(), net_file_.c_str(), default_redundancy_, default_method_.c_str(),
+           calibration_file_.c_str());
+}
+
+void CalibrationNode::loadNets(const std::string& net, const std::string& replay_net) {
+  const imagenets::NetSpec spec = imagenets::parseNetFile(net);
+  // What the node sets and reads: named, so a net of one's own says at once what it lacks.
+  auto need = [&](const std::string& block, const std::string& what) {
+    if (std::none_of(spec.blocks.begin(), spec.blocks.end(), [&](const auto& b) { return b.name == block; })) {
+      throw std::runtime_error(net + ": no block '" + block + "' (" + what + ")");
+    }
+  };
+  need("plan", "an imagenets/CalibrationPlan: the node sets its method, loops, replay");
+  need("samples", "the imagenets/Executor running the sample net: a replay runs it with " + replay_net);
+  need("solve", "an imagenets/SolveCalibration: the node sets its limits");
+  imagenets::NetSpec replay_spec = spec;
+  for (auto& b : replay_spec.blocks) {
+    if (b.name != "samples") continue;
+    for (auto& p : b.properties) {
+      if (p.name == "net") p.text = replay_net;
+    }
+  }
+  auto build = [&](const imagenets::NetSpec& s) {
+    auto exec = std::make_unique<imagenets::Executor>(imagenets::Net::build(s));
+    const imagenets::Endpoint result = exec->net().resolveOutput("result.value");  // throws naming the port
+    const auto& type = exec->net().node(result.node).block->outputs()[result.port].type->name;
+    if (type != "imagenets/CalibrationResult") {
+      throw std::runtime_error(s.origin + ": output 'result' is " + type + ", expected imagenets/CalibrationResult");
+    }
+    return exec;
+  };
+  live_ = build(spec);
+  replay_ = build(replay_spec);
 }
 
 void CalibrationNode::onJointStates(const sensor_msgs::JointStateConstPtr& msg) {
   {
     std::lock_guard<std::mutex> lock(data_mutex_);
-    joints_ = msg;
     if ((msg->header.stamp - last_chain_tf_).toSec() < 0.04) return;
     last_chain_tf_ = msg->header.stamp;
   }
@@ -208,21 +223,13 @@ void CalibrationNode::onJointStates(const sensor_msgs::JointStateConstPtr& msg) 
   tf_.sendTransform(t);
 }
 
-void CalibrationNode::onImage(const sensor_msgs::ImageConstPtr& msg, bool left) {
-  std::lock_guard<std::mutex> lock(data_mutex_);
-  auto& q = images_[left ? 0 : 1];
-  q.push_back(msg);
-  if (q.size() > 4) q.erase(q.begin());
-}
-
-void CalibrationNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg, bool left) {
-  std::lock_guard<std::mutex> lock(data_mutex_);
-  infos_[left ? 0 : 1] = msg;
-}
-
 bool CalibrationNode::onService(imagenets::Calibrate::Request& req, imagenets::Calibrate::Response& res) {
-  res = run(req, Hooks{});
+  res = run(req, {});
   return true;
+}
+
+void CalibrationNode::cancel() {
+  if (imagenets::Executor* exec = running_.load()) exec->cancel();
 }
 
 void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
@@ -230,16 +237,17 @@ void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
   req.redundancy = goal->redundancy;
   req.replay = goal->replay;
   req.method = goal->method;
-  Hooks hooks;
-  hooks.progress = [this](int k, int n, const std::string& stage) {
+  auto progress = [this](int k, int n, const std::string& stage) {
     imagenets::CalibrateFeedback f;
     f.sample = k;
     f.samples = n;
     f.stage = stage;
+    std::lock_guard<std::mutex> lock(feedback_mutex_);
     action_->publishFeedback(f);
   };
-  hooks.cancelled = [this] { return action_->isPreemptRequested() || !ros::ok(); };
-  const auto res = run(req, hooks);
+  imagenets::Calibrate::Response res;
+  res.message = "cancelled before it started";
+  if (!action_->isPreemptRequested()) res = run(req, progress);
   const auto result = sameMessage<imagenets::CalibrateResult>(res);
   if (res.success) {
     action_->setSucceeded(result);
@@ -250,7 +258,7 @@ void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
   }
 }
 
-imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::Request& req, const Hooks& hooks) {
+imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::Request& req, const Progress& progress) {
   imagenets::Calibrate::Response res;
   const auto& base = model_.description().base_frame;
   const int n = req.redundancy > 0 ? req.redundancy : default_redundancy_;
@@ -273,35 +281,33 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
   } release{busy_};
   const auto start = std::chrono::steady_clock::now();
   try {
+    if (!net_error_.empty()) throw std::runtime_error("the calibration net is not usable: " + net_error_);
     if (method != "paper" && method != "joint") {
       throw std::runtime_error("unknown method '" + method + "' (expected 'paper' or 'joint')");
     }
+    // The plan and the solve's limits are the net's properties.
+    imagenets::Executor& exec = req.replay.empty() ? *live_ : *replay_;
+    exec.setProperty("plan", "method", method);
+    exec.setProperty("plan", "replay", req.replay.empty() ? std::string() : boost::filesystem::absolute(req.replay).string());
+    exec.setProperty("plan", "loops", n);
+    exec.setProperty("plan", "poses_per_loop", poses_per_loop_);
+    exec.setProperty("solve", "max_position_difference", fusion_.max_position_difference);
+    exec.setProperty("solve", "max_angle_difference", fusion_.max_angle_difference);
+    exec.setProperty("solve", "min_valid_fraction", min_valid_fraction_);
+    const int total = req.replay.empty() ? n * (method == "joint" ? std::max(1, poses_per_loop_) : 1) : 0;
+    StereoPair last_pair;
+    double detection_time = 0;
+    const Result r = runNet(exec, progress, total, &last_pair, &detection_time);
+    fill(res, r, base, child_frame_);
+    res.total_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!req.replay.empty()) {
-      // Re-solve stored samples: no robot, nothing saved or published.
-      const StoredCalibration stored = loadCalibration(req.replay);
-      const Result r = calibrate(model_, stored.result.samples, method, fusion_, combine_);
-      fill(res, r, base, child_frame_);
+      // Re-solved stored samples: no robot, nothing saved or published.
       res.message = "replay of " + std::to_string(r.samples.size()) + " stored samples from " + req.replay + ": " +
                     r.message;
-      res.total_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!r.success) res.message = "calibration failed: " + res.message;
       return res;
     }
-    if (n < 1 || n % 2 == 0) {
-      throw std::runtime_error("redundancy must be odd and >= 1 (the per-axis median needs a middle value), got " +
-                               std::to_string(n));
-    }
-    // The joint method visits `poses_per_loop` different poses per loop (its unknowns need varied
-    // poses); the paper's method one pose per loop.
-    const int total = method == "joint" ? n * std::max(1, poses_per_loop_) : n;
-    detection_time_ = 0;
-    std::vector<Sample> samples = collectSamples(total, method, hooks);
-    if (hooks.progress) hooks.progress(total, total, "solving");
-    CombineOptions combine = combine_;
-    combine.min_valid_samples = std::max(1, static_cast<int>(std::ceil(min_valid_fraction_ * total)));
-    const Result r = calibrate(model_, std::move(samples), method, fusion_, combine);
-    fill(res, r, base, child_frame_);
-    res.compute_time = r.compute_time + detection_time_;  // image processing + solving, no motion
-    res.total_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    res.compute_time = r.compute_time + detection_time;  // image processing + solving, no motion
     if (!r.success) {
       res.message = "calibration failed: " + r.message + "; the saved calibration and the published frame are unchanged";
       return res;
@@ -312,7 +318,7 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     stored.result = r;
     const std::string archived = saveCalibration(stored, calibration_file_);
     res.file = calibration_file_;
-    const std::string pictures = savePictures(r.samples.back());
+    const std::string pictures = r.samples.empty() ? "" : savePictures(last_pair, r.samples.back());
     publish(r, child_frame_);
     publishSampleMarkers(r);
     const Eigen::Vector3d t = r.fixed_point.translation();
@@ -332,171 +338,70 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
   return res;
 }
 
-void CalibrationNode::moveBoth(Motion& motion, const CalibrationPose& pose, int sample, const Hooks& hooks) {
-  imagenets::MoveJointsGoal arm_goal, head_goal;
-  arm_goal.positions = pose.arm;
-  arm_goal.speed_scale = speed_scale_;
-  head_goal.positions = pose.head;
-  head_goal.speed_scale = speed_scale_;
-  MoveClient& arm = motion.arm;
-  MoveClient& head = motion.head;
-  arm.sendGoal(arm_goal);
-  head.sendGoal(head_goal);
-  bool cancelled = false;
-  MoveClient* lost = nullptr;  // a server that went away mid-motion (the robot's driver stopped)
-  const bool finished = motion.queue.waitUntil(
-      [&] {
-        cancelled = hooks.cancelled && hooks.cancelled();
-        for (auto* c : {&arm, &head}) {
-          if (!c->getState().isDone() && !c->isServerConnected()) lost = c;
-        }
-        return cancelled || lost || (arm.getState().isDone() && head.getState().isDone());
-      },
-      motion_timeout_);
-  if (cancelled || lost || !finished) {
-    arm.cancelGoal();
-    head.cancelGoal();
-    if (cancelled) throw std::runtime_error("cancelled during the motion of sample " + std::to_string(sample + 1));
-    if (lost) {
-      throw std::runtime_error(std::string(lost == &arm ? "arm" : "head") + " action server lost during the motion of sample " +
-                               std::to_string(sample + 1) + " (the robot's driver / friend_sim stopped?)");
-    }
-    throw std::runtime_error("motion of sample " + std::to_string(sample + 1) + " did not finish within " +
-                             std::to_string(motion_timeout_) + " s");
-  }
-  for (auto* c : {&arm, &head}) {
-    const auto state = c->getState();
-    if (state != actionlib::SimpleClientGoalState::SUCCEEDED) {
-      const auto result = c->getResult();
-      const std::string which = c == &arm ? "arm" : "head";
-      throw std::runtime_error(which + " goal " + state.toString() + " at sample " + std::to_string(sample + 1) + ": " +
-                               (result && !result->message.empty() ? result->message : state.getText()));
-    }
-  }
-}
-
-CalibrationNode::StereoPair CalibrationNode::waitForStereoPair(const ros::Time& after, const Hooks& hooks) {
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(camera_timeout_);
-  while (ros::ok()) {
-    {
-      std::lock_guard<std::mutex> lock(data_mutex_);
-      // The newest left image taken after the motion with a right image of the same stamp.
-      for (auto l = images_[0].rbegin(); l != images_[0].rend(); ++l) {
-        if ((*l)->header.stamp <= after) break;
-        for (const auto& r : images_[1]) {
-          if (r->header.stamp == (*l)->header.stamp && infos_[0] && infos_[1]) {
-            return StereoPair{*l, r, infos_[0], infos_[1]};
-          }
-        }
+Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progress, int samples, StereoPair* last_pair,
+                               double* detection_time) {
+  // The sample net's own outputs after each repetition: the stereo pair and the sample, for the
+  // live detection images (its inner executor is idle between repetitions).
+  const int samples_node = exec.net().findNode("samples");
+  const auto* inner = dynamic_cast<const imagenets::InnerNet*>(exec.net().node(samples_node).block.get());
+  std::mutex mutex;
+  int done = 0;
+  double left_ms = 0, right_ms = 0;
+  const int observer = exec.addObserver([&](const imagenets::RunEvent& e) {
+    std::lock_guard<std::mutex> lock(mutex);
+    const bool in_sample = e.block.rfind("samples/", 0) == 0 && e.block.find('/', 8) == std::string::npos;
+    if (e.kind == imagenets::RunEventKind::BlockStarted && progress && (in_sample || e.block == "solve")) {
+      // Stage: the block that started (e.g. samples/move_arm, samples/grab, samples/left_detection, solve).
+      progress(e.block == "solve" ? samples : done + 1, samples, e.block);
+    } else if (e.kind == imagenets::RunEventKind::BlockFinished && e.block == "samples/left_detection") {
+      left_ms = e.stats.last_ms;
+    } else if (e.kind == imagenets::RunEventKind::BlockFinished && e.block == "samples/right_detection") {
+      right_ms = e.stats.last_ms;
+    } else if (e.kind == imagenets::RunEventKind::Repetition && e.block == "samples") {
+      done = e.index;
+      *detection_time += std::max(left_ms, right_ms) / 1000.0;  // both images in parallel
+      left_ms = right_ms = 0;
+      const imagenets::Executor* sample_net = inner ? inner->innerExecutor() : nullptr;
+      if (!sample_net || !e.message.empty()) return;
+      StereoPair pair;
+      try {
+        pair.left = sample_net->output<sensor_msgs::Image>("left_image.value");
+        pair.right = sample_net->output<sensor_msgs::Image>("right_image.value");
+        pair.left_info = sample_net->output<sensor_msgs::CameraInfo>("left_info.value");
+        pair.right_info = sample_net->output<sensor_msgs::CameraInfo>("right_info.value");
+        const auto sample = sample_net->output<imagenets::CalibrationSample>("sample.value");
+        if (!pair.left || !pair.right || !pair.left_info || !pair.right_info || !sample) return;
+        const Sample s = fromMsg(*sample);
+        publishDetections(pair, s);
+        *last_pair = pair;
+        ROS_INFO("sample %d/%d: left %s (conf %.2f), right %s (conf %.2f)", done, samples,
+                 s.left.found ? "found" : "not found", s.left.confidence, s.right.found ? "found" : "not found",
+                 s.right.confidence);
+      } catch (const std::exception&) {
+        // A sample net without these outputs (e.g. the replay's) draws no pictures.
       }
     }
-    if (hooks.cancelled && hooks.cancelled()) throw std::runtime_error("cancelled while waiting for images");
-    if (ros::WallTime::now() > deadline) break;
-    ros::WallDuration(0.005).sleep();
+  });
+  running_ = &exec;
+  imagenets::RunReport report;
+  try {
+    report = exec.runAll();
+  } catch (...) {
+    running_ = nullptr;
+    exec.removeObserver(observer);
+    throw;
   }
-  std::lock_guard<std::mutex> lock(data_mutex_);
-  std::ostringstream why;
-  why << "camera silent: no stereo image pair (" << image_sub_[0].getTopic() << " + " << image_sub_[1].getTopic()
-      << " with equal stamps, and camera_info) within " << camera_timeout_ << " s after the motion (images received: "
-      << images_[0].size() << " left, " << images_[1].size() << " right)";
-  throw std::runtime_error(why.str());
+  running_ = nullptr;
+  exec.removeObserver(observer);
+  if (report.cancelled) throw std::runtime_error("cancelled (after " + std::to_string(done) + " samples)");
+  const auto result = exec.output<imagenets::CalibrationResult>("result.value");
+  if (!report.ok()) throw std::runtime_error(exec.net().origin() + ": " + report.failed.front());
+  if (!result) throw std::runtime_error(exec.net().origin() + ": the net gave no result");
+  return fromMsg(*result);
 }
 
-sensor_msgs::JointStateConstPtr CalibrationNode::waitForJointStates(const ros::Time& after) {
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(camera_timeout_);
-  while (ros::ok() && ros::WallTime::now() < deadline) {
-    {
-      std::lock_guard<std::mutex> lock(data_mutex_);
-      if (joints_ && joints_->header.stamp >= after) return joints_;
-    }
-    ros::WallDuration(0.002).sleep();
-  }
-  throw std::runtime_error("no joint_states on " + joint_sub_.getTopic() + " within " + std::to_string(camera_timeout_) +
-                           " s");
-}
-
-Sample CalibrationNode::measure(const StereoPair& pair, const sensor_msgs::JointState& joints) {
-  const auto& d = model_.description();
-  Sample s;
-  s.arm_q = robot_description::jointPositions(joints, d.arm.names());
-  s.head_q = robot_description::jointPositions(joints, d.head.names());
-  s.stamp = pair.left->header.stamp.toSec();
-  // Where the nominal model expects the marker: region of interest and pose-ambiguity hint.
-  const Eigen::Isometry3d marker = model_.marker(s.arm_q);
-  const Eigen::Isometry3d predicted_left = model_.leftCamera(s.head_q).inverse() * marker;
-  const Eigen::Isometry3d predicted_right = model_.rightCamera(s.head_q).inverse() * marker;
-  auto detect = [this](int side, const sensor_msgs::ImageConstPtr& img, const sensor_msgs::CameraInfoConstPtr& info,
-                       const Eigen::Isometry3d& predicted) {
-    MarkerObservation o;
-    try {
-      o = detection_nets_[side]->detect(img, *info, predicted);
-    } catch (const std::exception& e) {
-      o.found = false;
-      o.reason = std::string(side == 0 ? "left" : "right") + " image unusable: " + e.what();
-    }
-    return o;
-  };
-  // Left and right in parallel (the two Fig. 3.3 sub-nets of Fig. 4.2), each on its own net.
-  auto right = std::async(std::launch::async, detect, 1, pair.right, pair.right_info, predicted_right);
-  s.left = detect(0, pair.left, pair.left_info, predicted_left);
-  s.right = right.get();
-  return s;
-}
-
-std::vector<Sample> CalibrationNode::collectSamples(int n, const std::string& method, const Hooks& hooks) {
-  Motion motion(nh_, arm_action_, head_action_);
-  for (auto* c : {&motion.arm, &motion.head}) {
-    if (!motion.queue.waitUntil([c] { return c->isServerConnected(); }, server_timeout_)) {
-      std::ostringstream why;
-      why << (c == &motion.arm ? "arm" : "head") << " action server is not available after " << server_timeout_
-          << " s (is the robot / friend_sim running?)";
-      throw std::runtime_error(why.str());
-    }
-  }
-  const auto poses = calibrationPoses(model_, n, method);
-  std::vector<Sample> samples;
-  for (int k = 0; k < n; ++k) {
-    if (hooks.progress) hooks.progress(k + 1, n, "moving");
-    if (reapproach_ && method == "paper") {
-      // Every loop of the paper's procedure comes to the calibration pose anew (the first one
-      // too: the same approach whatever pose the robot starts from).
-      CalibrationPose away = poses[k];
-      away.arm[3] -= 10 * kDeg;
-      moveBoth(motion, away, k, hooks);
-    }
-    moveBoth(motion, poses[k], k, hooks);
-    if (settle_time_ > 0) ros::WallDuration(settle_time_).sleep();
-    const ros::Time after = ros::Time::now();
-    if (hooks.progress) hooks.progress(k + 1, n, "acquiring");
-    if (trigger_ && trigger_.exists()) {
-      std_srvs::Trigger t;
-      trigger_.call(t);  // a failed trigger shows as a silent camera below
-    }
-    const StereoPair pair = waitForStereoPair(after, hooks);
-    const auto joints = waitForJointStates(after);
-    if (hooks.progress) hooks.progress(k + 1, n, "detecting");
-    const auto t0 = std::chrono::steady_clock::now();
-    samples.push_back(measure(pair, *joints));
-    detection_time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    publishDetections(pair, samples.back());
-    {
-      std::lock_guard<std::mutex> lock(data_mutex_);
-      last_pair_ = {pair.left, pair.right, pair.left_info, pair.right_info};
-    }
-    ROS_INFO("sample %d/%d: left %s (conf %.2f), right %s (conf %.2f)", k + 1, n, samples.back().left.found ? "found" : "not found",
-             samples.back().left.confidence, samples.back().right.found ? "found" : "not found",
-             samples.back().right.confidence);
-  }
-  return samples;
-}
-
-std::string CalibrationNode::savePictures(const Sample& sample) {
+std::string CalibrationNode::savePictures(const StereoPair& pair, const Sample& sample) {
   // The last stereo pair with the detected marker points drawn, beside the calibration file.
-  StereoPair pair;
-  {
-    std::lock_guard<std::mutex> lock(data_mutex_);
-    pair = last_pair_;
-  }
   if (!pair.left || !pair.right) return "";
   const std::string stem = calibration_file_.substr(0, calibration_file_.rfind('.'));
   std::string written;

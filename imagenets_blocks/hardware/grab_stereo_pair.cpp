@@ -29,6 +29,7 @@ class GrabStereoPair : public Block {
     addProperty<double>("settle_time", 0.2, "seconds without joint motion before grabbing").range(0.0, 10.0);
     addProperty<double>("still_velocity", 1e-4, "joint speed (rad/s) below which a joint is still").range(0.0, 1.0);
     addProperty<bool>("trigger", true, "call NS/trigger (std_srvs/Trigger) instead of waiting for the free-running rate");
+    addProperty<double>("retrigger", 0.25, "seconds after which a trigger without a pair is repeated").range(0.01, 60.0);
     addProperty<double>("timeout", 10.0, "seconds to wait for the robot to settle and for the pair").range(0.1, 600.0);
   }
 
@@ -37,8 +38,7 @@ class GrabStereoPair : public Block {
     const double timeout = ctx.property<double>("timeout");
     const std::string ns = ctx.property<std::string>("camera");
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    const ros::Time settled = waitUntilSettled(ctx, deadline);
-
+    // Subscribed first, so the connections come up while the robot settles.
     ros::CallbackQueue queue;
     ros::NodeHandle nh;
     nh.setCallbackQueue(&queue);
@@ -46,15 +46,17 @@ class GrabStereoPair : public Block {
     std::map<ros::Time, sensor_msgs::ImageConstPtr> left, right;
     std::map<ros::Time, sensor_msgs::CameraInfoConstPtr> left_info, right_info;
     auto keep = [&](auto& store) {
-      return [&store, &m, settled](const auto& msg) {
+      return [&store, &m](const auto& msg) {
         std::lock_guard<std::mutex> lock(m);
-        if (msg->header.stamp >= settled) store[msg->header.stamp] = msg;
+        store[msg->header.stamp] = msg;
+        if (store.size() > 8) store.erase(store.begin());
       };
     };
     auto s1 = nh.subscribe<sensor_msgs::Image>(ns + "/left/image_raw", 4, keep(left));
     auto s2 = nh.subscribe<sensor_msgs::Image>(ns + "/right/image_raw", 4, keep(right));
     auto s3 = nh.subscribe<sensor_msgs::CameraInfo>(ns + "/left/camera_info", 4, keep(left_info));
     auto s4 = nh.subscribe<sensor_msgs::CameraInfo>(ns + "/right/camera_info", 4, keep(right_info));
+    const ros::Time settled = waitUntilSettled(ctx, deadline);
     // Let the subscriptions connect before triggering, or the triggered pair is missed.
     while ((s1.getNumPublishers() == 0 || s2.getNumPublishers() == 0) && ros::WallTime::now() < deadline) {
       queue.callAvailable(ros::WallDuration(0.01));
@@ -72,12 +74,13 @@ class GrabStereoPair : public Block {
           throw BlockError("camera trigger service '" + service + "' failed: " +
                            (t.response.message.empty() ? "not available" : t.response.message));
         }
-        next_trigger = ros::WallTime::now() + ros::WallDuration(1.0);  // retry if a frame was dropped
+        // Again if no pair came (a frame dropped, or the first one sent before our subscription connected).
+        next_trigger = ros::WallTime::now() + ros::WallDuration(ctx.property<double>("retrigger"));
       }
       queue.callAvailable(ros::WallDuration(0.01));
       std::lock_guard<std::mutex> lock(m);
       for (const auto& kv : left) {
-        if (right.count(kv.first) && left_info.count(kv.first) && right_info.count(kv.first)) {
+        if (kv.first >= settled && right.count(kv.first) && left_info.count(kv.first) && right_info.count(kv.first)) {
           ctx.output("left_image", kv.second);
           ctx.output("right_image", right[kv.first]);
           ctx.output("left_info", left_info[kv.first]);
@@ -86,7 +89,7 @@ class GrabStereoPair : public Block {
         }
       }
     }
-    throw BlockError("no synchronised pair on '" + s1.getTopic() + "' and '" + s2.getTopic() + "' within " +
+    throw BlockError("camera silent: no synchronised pair on '" + s1.getTopic() + "' and '" + s2.getTopic() + "' within " +
                      std::to_string(timeout) + " s (property timeout)");
   }
 

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <map>
 
 #include <cv_bridge/cv_bridge.h>
@@ -62,6 +63,7 @@ std::string writeValue(const Value& value, const std::string& dir, const std::st
     const std::string tmp = written + ".tmp";
     {
       std::ofstream out(tmp);
+      out << std::setprecision(17);  // every double as it is: results can be compared exactly
       out << "# " << value.type->name << "\n";
       value.type->printYaml(out, value);
       if (!out) throw std::runtime_error("cannot write '" + written + "'");

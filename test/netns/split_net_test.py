@@ -186,11 +186,17 @@ class NetsAcrossMachines(unittest.TestCase):
         reference = self.listen(self.robot, ROBOT_IP, OUTPUTS, one)["images"]
         self.stop(one)
 
-        # 2. Split: cameras on the robot, the sub-nets on the workstation.
+        # 2. Split: cameras on the robot, the sub-nets on the workstation, as launch/README.md says.
+        robot_args = ["manager:=robot_manager", "segmentation:=false"]
+        workstation_args = ["manager:=workstation_manager", "use_file_sources:=false"]
+        with open(os.path.join(self.repo, "launch", "README.md")) as f:
+            readme = f.read()
+        for args in (robot_args, workstation_args):
+            command = " ".join(["roslaunch imagenets", LAUNCH] + args)
+            self.assertIn(command, readme, "launch/README.md no longer gives `%s`: update this test" % command)
         before = self.received_bytes(self.workstation)
-        robot = self.roslaunch(self.robot, ROBOT_IP, "robot", ["manager:=robot_manager", "segmentation:=false"])
-        workstation = self.roslaunch(self.workstation, WORKSTATION_IP, "workstation",
-                                     ["manager:=workstation_manager", "use_file_sources:=false"])
+        robot = self.roslaunch(self.robot, ROBOT_IP, "robot", robot_args)
+        workstation = self.roslaunch(self.workstation, WORKSTATION_IP, "workstation", workstation_args)
         split = self.listen(self.workstation, WORKSTATION_IP, OUTPUTS + CAMERAS, robot, workstation)
         received = self.received_bytes(self.workstation) - before
 

@@ -1,29 +1,32 @@
-// rostest: the paper's calibration as nets (launch/nets/fig4_3_redundant_calibration.launch: the
-// Fig. 4.3 net running the Fig. 4.2 net 3 times in an imagenets/Executor nodelet) against the
-// simulated FRIEND robot. Checks the combined fixed point
-//   - against the simulator's true fixed point (the paper's method keeps the ~4.4 mm / 0.4 deg
-//     bias of the nominal marker offset here, see docs/calibration.md: within 10 mm / 1 deg),
-//   - against the C++ implementation (friend_calibration) fed the net's own measurements
-//     (detections and joint angles): the same chain must give the same frames to 1e-6,
-//   - against friend_calibration_node's `paper` method run afterwards at the same pose with its own
-//     image processing: both see the same robot, so they agree to a fraction of a millimetre.
+// rostest: the FRIEND calibration net (config/nets/calibration.yaml, the one definition) run three
+// ways against the simulated FRIEND robot:
+//   - roslaunch: launch/nets/fig4_3_redundant_calibration.launch runs it (paper method, 3 loops)
+//     in an imagenets/Executor nodelet: its fixed point against the simulator's truth (the paper's
+//     method keeps the ~4.4 mm / 0.4 deg bias of the nominal marker offset, docs/calibration.md),
+//     and against the library's calibrate() on the net's own samples (to 1e-9);
+//   - the calibration node (service): a live run at the same pose agrees within the image noise;
+//   - replay: the launch's stored samples re-solved by the node's service and by `imagenets run`
+//     of the net give equal results to 1e-9, for both methods.
 #include <cmath>
 #include <cstdio>
-#include <mutex>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
 
-#include <geometry_msgs/PoseArray.h>
+#include <boost/filesystem.hpp>
 #include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
+#include <imagenets/CalibrationResult.h>
 #include <ros/ros.h>
-#include <sensor_msgs/JointState.h>
 
 #include "friend_calibration/calibration.h"
+#include "friend_calibration/calibration_msgs.h"
+#include "friend_calibration/storage.h"
 #include "imagenets/BlockNodeletStatus.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/vision/frames.h"
-#include "robot_description/joint_state.h"
 #include "rostest_util.h"
-
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -39,100 +42,136 @@ double degBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return friend_calibration::angleBetween(a, b) / kDeg;
 }
 
+// The fixed point of a CalibrationResult written by `imagenets run` (ROS's message printer, full
+// precision): translation x y z, rotation x y z w of the first `transform:` after `fixed_point:`.
+std::vector<double> fixedPointFromOutput(const std::string& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::vector<double> v;
+  bool in_fixed_point = false, in_transform = false;
+  while (std::getline(in, line) && v.size() < 7) {
+    if (line.rfind("fixed_point:", 0) == 0) in_fixed_point = true;
+    if (in_fixed_point && line.find("transform:") != std::string::npos) in_transform = true;
+    const auto colon = line.find(':');
+    if (!in_transform || colon == std::string::npos) continue;
+    const std::string key = line.substr(line.find_first_not_of(' '), colon - line.find_first_not_of(' '));
+    if (key == "x" || key == "y" || key == "z" || key == "w") v.push_back(std::stod(line.substr(colon + 1)));
+  }
+  return v;
+}
+
+std::string root() {
+  const std::string desc = robot_description::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
+  return desc.substr(0, desc.size() - std::string("config/friend/robot.yaml").size());
+}
+
 class Fig4CalibrationNets : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     LatestMessage<geometry_msgs::TransformStamped> fixed_point(kNet + "/out/fixed_point");
-    LatestMessage<geometry_msgs::PoseArray> fixed_points(kNet + "/out/fixed_points"), left(kNet + "/out/left_poses"),
-        right(kNet + "/out/right_poses");
-    LatestMessage<sensor_msgs::JointState> arm(kNet + "/out/arm_joint_states"), head(kNet + "/out/head_joint_states");
+    LatestMessage<imagenets::CalibrationResult> result(kNet + "/out/result");
     LatestMessage<imagenets::BlockNodeletStatus> status(kNet + "/status");
     // The net runs once at start-up: 3 loops of motion, stereo grab and two feedback detections.
-    result_ = fixed_point.wait(45);
-    if (!result_) {
+    frame_ = fixed_point.wait(60);
+    if (!frame_) {
       auto s = status.wait(1);
-      failure_ = "no fixed point from the Fig. 4.3 net within 45 s; its status: " +
+      failure_ = "no fixed point from the calibration net within 60 s; its status: " +
                  (s ? std::to_string(s->runs) + " runs, last error '" + s->last_error + "'" : std::string("none"));
       return;
     }
-    fixed_points_ = fixed_points.wait(5);
-    left_ = left.wait(5);
-    right_ = right.wait(5);
-    arm_ = arm.wait(5);
-    head_ = head.wait(5);
+    result_ = result.wait(5);
     truth_ = LatestMessage<geometry_msgs::TransformStamped>("/friend_sim/ground_truth/head_base").wait(5);
   }
-  void SetUp() override { ASSERT_TRUE(result_) << failure_; }
+  void SetUp() override {
+    ASSERT_TRUE(frame_) << failure_;
+    ASSERT_TRUE(result_);
+  }
 
-  static geometry_msgs::TransformStampedConstPtr result_, truth_;
-  static geometry_msgs::PoseArrayConstPtr fixed_points_, left_, right_;
-  static sensor_msgs::JointStateConstPtr arm_, head_;
+  static geometry_msgs::TransformStampedConstPtr frame_, truth_;
+  static imagenets::CalibrationResultConstPtr result_;
   static std::string failure_;
 };
-geometry_msgs::TransformStampedConstPtr Fig4CalibrationNets::result_, Fig4CalibrationNets::truth_;
-geometry_msgs::PoseArrayConstPtr Fig4CalibrationNets::fixed_points_, Fig4CalibrationNets::left_,
-    Fig4CalibrationNets::right_;
-sensor_msgs::JointStateConstPtr Fig4CalibrationNets::arm_, Fig4CalibrationNets::head_;
+geometry_msgs::TransformStampedConstPtr Fig4CalibrationNets::frame_, Fig4CalibrationNets::truth_;
+imagenets::CalibrationResultConstPtr Fig4CalibrationNets::result_;
 std::string Fig4CalibrationNets::failure_;
 
 TEST_F(Fig4CalibrationNets, CombinedFixedPointIsNearTheTruth) {
-  EXPECT_EQ(result_->header.frame_id, "base_link");
-  EXPECT_EQ(result_->child_frame_id, "pth_fixed_point");
-  ASSERT_TRUE(fixed_points_);
-  EXPECT_EQ(fixed_points_->poses.size(), 3u) << "every loop of redundancy 3 gives a fixed point";
+  EXPECT_EQ(frame_->header.frame_id, "base_link");
+  EXPECT_EQ(frame_->child_frame_id, "pth_fixed_point");
+  ASSERT_TRUE(result_->success) << result_->message;
+  EXPECT_EQ(result_->method, "paper");
+  EXPECT_EQ(result_->samples.size(), 3u) << "every loop of redundancy 3 gives a sample";
   ASSERT_TRUE(truth_);
-  const Eigen::Isometry3d x = toEigen(result_->transform), t = toEigen(truth_->transform);
+  const Eigen::Isometry3d x = toEigen(frame_->transform), t = toEigen(truth_->transform);
   const double mm = mmBetween(x, t), deg = degBetween(x, t);
   // The nominal fixed point is 15 mm / 2 deg off the truth: the net must have moved towards it.
   const robot_description::RobotModel nominal(
       robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
-  std::printf("Fig. 4.3 net (3 loops): error vs true fixed point %.3f mm / %.4f deg (nominal model: %.1f mm / %.2f deg)\n",
+  std::printf("calibration net (paper, 3 loops): error vs true fixed point %.3f mm / %.4f deg (nominal model: %.1f mm / "
+              "%.2f deg)\n",
               mm, deg, mmBetween(nominal.headBase(), t), degBetween(nominal.headBase(), t));
   EXPECT_LT(mm, 10.0);
   EXPECT_LT(deg, 1.0);
   EXPECT_LT(mm, mmBetween(nominal.headBase(), t) / 2);
   // Redundancy: the loops agree with each other (image noise only).
-  for (const auto& p : fixed_points_->poses) {
-    EXPECT_LT(mmBetween(toEigen(p), x), 1.0);
-    EXPECT_LT(degBetween(toEigen(p), x), 0.1);
+  for (const auto& s : result_->samples) {
+    ASSERT_TRUE(s.valid) << s.reason;
+    EXPECT_EQ(s.fusion, "both");
+    EXPECT_LT(mmBetween(toEigen(s.fixed_point), x), 1.0);
+    EXPECT_LT(degBetween(toEigen(s.fixed_point), x), 0.1);
   }
 }
 
-TEST_F(Fig4CalibrationNets, SameMeasurementsGiveTheCppImplementationsFrames) {
-  ASSERT_TRUE(fixed_points_ && left_ && right_ && arm_ && head_);
-  ASSERT_EQ(left_->poses.size(), fixed_points_->poses.size());
-  ASSERT_EQ(right_->poses.size(), fixed_points_->poses.size());
+TEST_F(Fig4CalibrationNets, TheNetsSamplesGiveTheLibrarysResult) {
   const robot_description::RobotModel model(
       robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
-  const auto& d = model.description();
-  // The joint angles of the last loop; every loop commands the same pose and the simulator's
-  // encoders are noise-free here, so they are every loop's angles.
-  const std::vector<double> arm_q = robot_description::jointPositions(*arm_, d.arm.names()),
-                            head_q = robot_description::jointPositions(*head_, d.head.names());
-  std::vector<friend_calibration::Sample> samples;
-  for (size_t i = 0; i < fixed_points_->poses.size(); ++i) {
-    friend_calibration::Sample s;
-    s.arm_q = arm_q;
-    s.head_q = head_q;
-    s.left.found = s.right.found = true;
-    s.left.pose = toEigen(left_->poses[i]);
-    s.right.pose = toEigen(right_->poses[i]);  // in the right camera's frame, as the net's detector gives it
-    friend_calibration::solveSample(model, s, friend_calibration::FusionLimits{});
-    ASSERT_TRUE(s.valid) << "loop " << i << ": " << s.reason;
-    EXPECT_EQ(s.fusion, "both");
-    const Eigen::Isometry3d net = toEigen(fixed_points_->poses[i]);
-    EXPECT_LT(mmBetween(net, s.fixed_point), 1e-3) << "loop " << i;  // 1 micrometre
-    EXPECT_LT(degBetween(net, s.fixed_point), 1e-4) << "loop " << i;
-    samples.push_back(s);
+  const friend_calibration::Result net = friend_calibration::fromMsg(*result_);
+  std::vector<friend_calibration::Sample> raw = net.samples;
+  friend_calibration::CombineOptions combine;
+  combine.min_valid_samples = 2;  // ceil(0.5 * 3), the solve's default min_valid_fraction
+  const auto library = friend_calibration::calibrate(model, raw, "paper", friend_calibration::FusionLimits(), combine);
+  ASSERT_TRUE(library.success) << library.message;
+  std::printf("calibration net vs friend_calibration on the net's samples: %.2e mm\n",
+              mmBetween(net.fixed_point, library.fixed_point));
+  EXPECT_LT((net.fixed_point.translation() - library.fixed_point.translation()).norm(), 1e-9);
+  EXPECT_LT((net.fixed_point.rotation() - library.fixed_point.rotation()).norm(), 1e-9);
+}
+
+TEST_F(Fig4CalibrationNets, ReplayThroughTheServiceAndImagenetsRunAgree) {
+  // The launch's samples as a calibration file, re-solved both ways.
+  const std::string dir = (boost::filesystem::temp_directory_path() /
+                           boost::filesystem::unique_path("fig4_replay_%%%%%%")).string();
+  boost::filesystem::create_directories(dir);
+  friend_calibration::StoredCalibration stored;
+  stored.result = friend_calibration::fromMsg(*result_);
+  const std::string file = dir + "/stored.yaml";
+  friend_calibration::saveCalibration(stored, file);
+  ASSERT_TRUE(ros::service::waitForService("/friend_calibration/calibrate", ros::Duration(20)));
+  for (const std::string method : {"paper", "joint"}) {
+    imagenets::Calibrate srv;
+    srv.request.replay = file;
+    srv.request.method = method;
+    ASSERT_TRUE(ros::service::call("/friend_calibration/calibrate", srv));
+    ASSERT_TRUE(srv.response.success) << srv.response.message;
+    const std::string out = dir + "/" + method;
+    const std::string command = std::string(IMAGENETS_TOOL) + " run " + root() +
+                                "config/nets/calibration.yaml --quiet --set samples.net=calibration_sample_replay.yaml"
+                                " --set plan.replay=" + file + " --set plan.method=" + method + " --output-dir " + out +
+                                " > " + out + ".log 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command << " (see " << out << ".log)";
+    const std::vector<double> run = fixedPointFromOutput(out + "/result.value.yaml");
+    ASSERT_EQ(run.size(), 7u) << out << "/result.value.yaml";
+    const auto& t = srv.response.fixed_point.transform;
+    const std::vector<double> service{t.translation.x, t.translation.y, t.translation.z, t.rotation.x,
+                                      t.rotation.y,    t.rotation.z,    t.rotation.w};
+    std::printf("replay (%s): service vs imagenets run: ", method.c_str());
+    for (size_t i = 0; i < 7; ++i) {
+      std::printf("%.1e ", run[i] - service[i]);
+      EXPECT_NEAR(run[i], service[i], 1e-9) << method << " component " << i;
+    }
+    std::printf("\n");
   }
-  const auto combined = friend_calibration::combineRedundantSamples(samples, friend_calibration::CombineOptions{});
-  ASSERT_TRUE(combined.success) << combined.message;
-  ASSERT_EQ(combined.used.size(), samples.size()) << combined.message;
-  const Eigen::Isometry3d net = toEigen(result_->transform);
-  std::printf("Fig. 4.3 net vs friend_calibration on the net's measurements: %.2e mm / %.2e deg\n",
-              mmBetween(net, combined.fixed_point), degBetween(net, combined.fixed_point));
-  EXPECT_LT(mmBetween(net, combined.fixed_point), 1e-3);
-  EXPECT_LT(degBetween(net, combined.fixed_point), 1e-4);
+  boost::filesystem::remove_all(dir);
 }
 
 TEST_F(Fig4CalibrationNets, AgreesWithTheCalibrationNodesPaperMethod) {
@@ -142,12 +181,11 @@ TEST_F(Fig4CalibrationNets, AgreesWithTheCalibrationNodesPaperMethod) {
   srv.request.method = "paper";
   ASSERT_TRUE(ros::service::call("/friend_calibration/calibrate", srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
-  const Eigen::Isometry3d net = toEigen(result_->transform), node = toEigen(srv.response.fixed_point.transform);
+  const Eigen::Isometry3d net = toEigen(frame_->transform), node = toEigen(srv.response.fixed_point.transform);
   const double mm = mmBetween(net, node), deg = degBetween(net, node);
-  std::printf("Fig. 4.3 net vs friend_calibration_node (paper method, 3 loops, own detection): %.3f mm / %.4f deg\n",
-              mm, deg);
-  // Same pose, same robot, independent image processing (the node crops to the predicted marker
-  // and sweeps the threshold coarse-to-fine): the two differ by image noise only.
+  std::printf("roslaunch of the net vs friend_calibration_node (paper method, 3 loops, live): %.3f mm / %.4f deg\n", mm,
+              deg);
+  // Same net, same pose, same robot, new images: the two differ by image noise only.
   EXPECT_LT(mm, 0.5);
   EXPECT_LT(deg, 0.05);
 }

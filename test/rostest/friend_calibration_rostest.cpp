@@ -164,7 +164,7 @@ TEST_F(FriendCalibration, FailuresKeepThePreviousCalibrationByteIdentical) {
   settle();
   res = call(3);
   EXPECT_FALSE(res.success);
-  EXPECT_NE(res.message.find("arm goal ABORTED"), std::string::npos) << res.message;
+  EXPECT_NE(res.message.find("/arm/move_joints' ABORTED"), std::string::npos) << res.message;  // the arm's goal
   EXPECT_EQ(readFile(file_), before);
   resetFaults();
 
@@ -212,6 +212,21 @@ TEST_F(FriendCalibration, ConcurrentTriggerIsRejectedAndCancelKeepsTheFile) {
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED) << client.getState().getText();
   EXPECT_NE(client.getResult()->message.find("cancelled"), std::string::npos) << client.getResult()->message;
   EXPECT_EQ(readFile(file_), before);
+}
+
+TEST(FriendCalibrationNet, ABadNetIsNamedAndTheNodeKeepsServing) {
+  for (const auto& [node, culprit] : std::vector<std::pair<std::string, std::string>>{
+           {"/friend_calibration_missing_net", "/nonexistent/calibration.yaml"},
+           {"/friend_calibration_wrong_net", "threshold_demo.yaml: no block 'plan'"}}) {
+    ASSERT_TRUE(ros::service::waitForService(node + "/calibrate", ros::Duration(30))) << node;
+    imagenets::Calibrate srv;
+    srv.request.redundancy = 1;
+    ASSERT_TRUE(ros::service::call(node + "/calibrate", srv)) << node;
+    EXPECT_FALSE(srv.response.success);
+    EXPECT_NE(srv.response.message.find("the calibration net is not usable"), std::string::npos) << srv.response.message;
+    EXPECT_NE(srv.response.message.find(culprit), std::string::npos) << srv.response.message;
+    EXPECT_NE(srv.response.message.find("unchanged"), std::string::npos) << srv.response.message;
+  }
 }
 
 }  // namespace

@@ -81,9 +81,8 @@ TEST(Tool, ValidateAcceptsEveryShippedNet) {
   for (const auto& e : boost::filesystem::directory_iterator("config/nets")) {
     if (e.path().extension() == ".yaml") nets.push_back("config/nets/" + e.path().filename().string());
   }
-  for (const char* must : {"config/nets/fig4_2_calibration.yaml", "config/nets/fig4_3_redundant_calibration.yaml",
-                           "config/nets/calibration.yaml", "config/nets/calibration_sample.yaml",
-                           "config/nets/calibration_sample_replay.yaml"}) {
+  for (const char* must : {"config/nets/calibration.yaml", "config/nets/calibration_sample.yaml",
+                           "config/nets/calibration_sample_replay.yaml", "config/nets/calibration_marker_detection.yaml"}) {
     EXPECT_NE(std::find(nets.begin(), nets.end(), must), nets.end()) << must;
   }
   for (const auto& net : nets) {

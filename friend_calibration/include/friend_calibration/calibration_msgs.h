@@ -7,6 +7,8 @@
 #include <string>
 
 #include <imagenets/CalibrationResult.h>
+#include <imagenets/FeedbackTrace.h>
+#include <imagenets/MarkerDetection.h>
 #include <imagenets/CalibrationSample.h>
 #include <imagenets/MarkerObservation.h>
 
@@ -14,6 +16,10 @@
 
 namespace friend_calibration {
 
+// What the robust detection net gave, as the calibration keeps it: found with pose, score, the
+// chosen threshold and the points when `detection` found the marker, else not found, `why_not`.
+MarkerObservation observationOf(const imagenets::MarkerDetection* detection, const imagenets::FeedbackTrace* trace,
+                                const std::string& why_not);
 imagenets::MarkerObservation toMsg(const MarkerObservation& observation);
 MarkerObservation fromMsg(const imagenets::MarkerObservation& msg);
 imagenets::CalibrationSample toMsg(const Sample& sample);
