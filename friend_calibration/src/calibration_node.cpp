@@ -312,6 +312,13 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
       res.message = "calibration failed: " + r.message + "; the saved calibration and the published frame are unchanged";
       return res;
     }
+    const std::string refusal = overwriteRefusal(r, calibration_file_, pnh_.param("max_uncertainty", 0.002));
+    if (!refusal.empty()) {
+      res.success = false;
+      res.message = refusal + "; " + r.message;
+      ROS_WARN("%s", res.message.c_str());
+      return res;
+    }
     StoredCalibration stored;
     stored.base_frame = base;
     stored.child_frame = child_frame_;

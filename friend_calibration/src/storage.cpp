@@ -356,4 +356,23 @@ StoredCalibration loadCalibration(const std::string& path) {
   return c;
 }
 
+std::string overwriteRefusal(const Result& fresh, const std::string& path, double max_uncertainty) {
+  if (!(max_uncertainty > 0) || !fresh.has_covariance || 3 * fresh.sigmaTranslation() <= max_uncertainty) return "";
+  Result saved;
+  try {
+    saved = loadCalibration(path).result;
+  } catch (const std::exception&) {
+    return "";  // nothing good to keep
+  }
+  if (saved.has_covariance && 3 * saved.sigmaTranslation() > max_uncertainty) return "";
+  char b[400];
+  std::snprintf(b, sizeof b,
+                "calibration not saved: its uncertainty (3 sigma) %.3f mm is above ~max_uncertainty %.3f mm; the "
+                "saved calibration %s (%s) and the published frame are unchanged",
+                3000 * fresh.sigmaTranslation(), 1000 * max_uncertainty, path.c_str(),
+                saved.has_covariance ? ("3 sigma " + std::to_string(3000 * saved.sigmaTranslation()).substr(0, 5) + " mm").c_str()
+                                     : "no uncertainty recorded");
+  return b;
+}
+
 }  // namespace friend_calibration

@@ -189,5 +189,34 @@ TEST_F(BundleAdjustmentTest, TheUncertaintyTravelsThroughTheFileAndTheMessageAnd
   std::filesystem::remove_all(dir);
 }
 
+TEST_F(BundleAdjustmentTest, AGoodCalibrationIsNotOverwrittenByOneWithAnUncertaintyAboveTheLimit) {
+  const Result good = calibrate(model, simulate(3, 0.05).samples, "joint", FusionLimits(), CombineOptions());
+  // Ten times the pixel noise (the detection gates opened to let it through).
+  FusionLimits loose;
+  loose.max_reprojection_error = 5;
+  loose.relative_reprojection_error = 0;
+  loose.max_position_difference = 0.05;
+  loose.max_angle_difference = 0.2;
+  const Result noisy = calibrate(model, simulate(3, 0.5).samples, "joint", loose, CombineOptions());
+  ASSERT_TRUE(good.has_covariance) << good.message;
+  ASSERT_TRUE(noisy.has_covariance) << noisy.message;
+  ASSERT_LT(3 * good.sigmaTranslation(), 0.002);
+  ASSERT_GT(3 * noisy.sigmaTranslation(), 0.003);
+  const auto dir = std::filesystem::temp_directory_path() / ("overwrite_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "pth_fixed_point.yaml").string();
+  EXPECT_EQ(overwriteRefusal(noisy, file, 0.002), "");  // nothing saved yet
+  StoredCalibration stored;
+  stored.result = good;
+  saveCalibration(stored, file);
+  const std::string refusal = overwriteRefusal(noisy, file, 0.002);
+  EXPECT_NE(refusal.find("calibration not saved: its uncertainty (3 sigma)"), std::string::npos) << refusal;
+  EXPECT_NE(refusal.find("above ~max_uncertainty 2.000 mm"), std::string::npos) << refusal;
+  EXPECT_NE(refusal.find(file), std::string::npos) << refusal;
+  EXPECT_EQ(overwriteRefusal(good, file, 0.002), "");
+  EXPECT_EQ(overwriteRefusal(noisy, file, 0.0), "");  // off
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace friend_calibration
