@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 
+#include "friend_calibration/bundle_adjustment.h"
 #include "imagenets/vision/frames.h"
 
 namespace friend_calibration {
@@ -208,6 +209,17 @@ void combineUsed(const std::vector<Sample>& samples, Result& r) {
     r.std_translation[axis] = sampleStd(tv);
     r.std_rotation[axis] = sampleStd(rv);
   }
+}
+
+// Per-sample frames with the estimated model (marker and joint offsets): their spread and residuals.
+void perSampleFrames(const RobotModel& model, Result& r, const FusionLimits& limits) {
+  const RobotModel estimated = withJointOffsets(model, r.arm_joint_offsets, r.head_joint_offsets);
+  for (int i : r.used) solveSample(estimated, r.samples[i], limits, r.marker_offset);
+  Result spread = r;
+  combineUsed(r.samples, spread);
+  r.std_translation = spread.std_translation;
+  r.std_rotation = spread.std_rotation;
+  residuals(r.samples, r.fixed_point, r);
 }
 
 }  // namespace
@@ -411,14 +423,7 @@ Result solveJointly(const RobotModel& model, const Result& paper, const FusionLi
   r.marker_offset = st.m;
   r.arm_joint_offsets = st.arm;
   r.head_joint_offsets = st.head;
-  // Per-sample frames with the estimated model: their spread and residuals.
-  const RobotModel estimated = withJointOffsets(model, st.arm, st.head);
-  for (int i : r.used) solveSample(estimated, r.samples[i], limits, st.m);
-  Result spread = r;
-  combineUsed(r.samples, spread);
-  r.std_translation = spread.std_translation;
-  r.std_rotation = spread.std_rotation;
-  residuals(r.samples, r.fixed_point, r);
+  perSampleFrames(model, r, limits);
   double max_offset = 0;
   for (double o : st.arm) max_offset = std::max(max_offset, std::abs(o));
   for (double o : st.head) max_offset = std::max(max_offset, std::abs(o));
@@ -426,6 +431,37 @@ Result solveJointly(const RobotModel& model, const Result& paper, const FusionLi
                mm((m_nominal.inverse() * st.m).translation().norm()) + " / " + deg(angleBetween(m_nominal, st.m)) +
                ") and joint zero offsets (largest " + deg(max_offset) + ")";
   return r;
+}
+
+void refineAtPixelLevel(const RobotModel& model, Result& r, const FusionLimits& limits) {
+  if (!r.success) return;
+  std::string why;
+  const auto cameras = stereoCamerasOf(model.description(), &why);
+  if (!cameras) {
+    r.message += "; pixel-level fit skipped: no camera model (" + why + ")";
+    return;
+  }
+  std::vector<const Sample*> used;
+  for (int i : r.used) used.push_back(&r.samples[i]);
+  // The marker's border is ARToolKit's quarter of its size (config/markers/gripper.yaml).
+  const BundleAdjustment ba = bundleAdjust(model, *cameras, markerDefinedPoints(model.description().marker_size), used, r,
+                                           limits.max_reprojection_error);
+  r.message += "; " + ba.message;
+  if (!ba.ok) return;
+  r.fixed_point = ba.fixed_point;
+  r.marker_offset = ba.marker_offset;
+  r.arm_joint_offsets = ba.arm_joint_offsets;
+  r.head_joint_offsets = ba.head_joint_offsets;
+  r.has_covariance = ba.fixed_point_covariance.trace() > 0;
+  r.fixed_point_covariance = ba.fixed_point_covariance;
+  r.marker_offset_covariance = ba.marker_offset_covariance;
+  r.arm_joint_offset_std = ba.arm_joint_offset_std;
+  r.head_joint_offset_std = ba.head_joint_offset_std;
+  r.reprojection_rms = ba.reprojection_rms;
+  perSampleFrames(model, r, limits);
+  if (r.has_covariance) {
+    r.message += "; 1 sigma " + mm(r.sigmaTranslation()) + " / " + deg(r.sigmaRotation());
+  }
 }
 
 Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std::string& method,
@@ -450,7 +486,10 @@ Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std
   for (auto& s : samples) solveSample(model, s, tightened);
   Result r = combineRedundantSamples(std::move(samples), options);
   r.marker_offset = model.description().marker.pose;
-  if (method == "joint") r = solveJointly(model, r, tightened);
+  if (method == "joint") {
+    r = solveJointly(model, r, tightened);
+    refineAtPixelLevel(model, r, tightened);
+  }
   r.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -1,5 +1,6 @@
 #include "friend_calibration/calibration_msgs.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "imagenets/vision/frames.h"
@@ -94,6 +95,12 @@ imagenets::CalibrationResult toMsg(const Result& r, const std::string& base, con
   m.residual_translation = r.residual_translation;
   m.residual_rotation = r.residual_rotation;
   m.compute_time = r.compute_time;
+  // Symmetric: row- and column-major are the same.
+  std::copy(r.fixed_point_covariance.data(), r.fixed_point_covariance.data() + 36, m.fixed_point_covariance.begin());
+  std::copy(r.marker_offset_covariance.data(), r.marker_offset_covariance.data() + 36, m.marker_offset_covariance.begin());
+  m.arm_joint_offset_std = r.arm_joint_offset_std;
+  m.head_joint_offset_std = r.head_joint_offset_std;
+  m.reprojection_rms = r.reprojection_rms;
   for (const auto& s : r.samples) m.samples.push_back(toMsg(s));
   return m;
 }
@@ -115,6 +122,12 @@ Result fromMsg(const imagenets::CalibrationResult& m) {
   r.residual_translation = m.residual_translation;
   r.residual_rotation = m.residual_rotation;
   r.compute_time = m.compute_time;
+  r.fixed_point_covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6>>(m.fixed_point_covariance.data());
+  r.marker_offset_covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6>>(m.marker_offset_covariance.data());
+  r.has_covariance = r.fixed_point_covariance.trace() > 0;
+  r.arm_joint_offset_std = m.arm_joint_offset_std;
+  r.head_joint_offset_std = m.head_joint_offset_std;
+  r.reprojection_rms = m.reprojection_rms;
   for (const auto& s : m.samples) r.samples.push_back(fromMsg(s));
   return r;
 }

@@ -44,6 +44,7 @@ void fill(Out& out, const Result& r, const std::string& base, const std::string&
   out.fixed_point = imagenets::frames::toTransformStamped(r.fixed_point, base, child, ros::Time::now());
   out.std_dev_translation = imagenets::frames::toVector3Msg(r.std_translation);
   out.std_dev_rotation = imagenets::frames::toVector3Msg(r.std_rotation);
+  std::copy(r.fixed_point_covariance.data(), r.fixed_point_covariance.data() + 36, out.fixed_point_covariance.begin());
   out.samples_used = static_cast<int>(r.used.size());
   out.samples_rejected = static_cast<int>(r.rejected.size());
   out.rejected_samples = r.rejected;
@@ -309,6 +310,13 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     res.compute_time = r.compute_time + detection_time;  // image processing + solving, no motion
     if (!r.success) {
       res.message = "calibration failed: " + r.message + "; the saved calibration and the published frame are unchanged";
+      return res;
+    }
+    const std::string refusal = overwriteRefusal(r, calibration_file_, pnh_.param("max_uncertainty", 0.002));
+    if (!refusal.empty()) {
+      res.success = false;
+      res.message = refusal + "; " + r.message;
+      ROS_WARN("%s", res.message.c_str());
       return res;
     }
     StoredCalibration stored;

@@ -185,6 +185,18 @@ std::string saveCalibration(const StoredCalibration& c, const std::string& path)
   emitVector(out, r.std_translation);
   out << YAML::Key << "std_dev_rotation" << YAML::Value;
   emitVector(out, r.std_rotation);
+  if (r.has_covariance) {
+    // The pixel-level fit's uncertainty (calibration.h): row-major 6x6, (translation m, rotation rad).
+    out << YAML::Key << "fixed_point_covariance" << YAML::Value;
+    emitList(out, std::vector<double>(r.fixed_point_covariance.data(), r.fixed_point_covariance.data() + 36));
+    out << YAML::Key << "marker_offset_covariance" << YAML::Value;
+    emitList(out, std::vector<double>(r.marker_offset_covariance.data(), r.marker_offset_covariance.data() + 36));
+    out << YAML::Key << "arm_joint_offset_std" << YAML::Value;
+    emitList(out, r.arm_joint_offset_std);
+    out << YAML::Key << "head_joint_offset_std" << YAML::Value;
+    emitList(out, r.head_joint_offset_std);
+    out << YAML::Key << "reprojection_rms" << YAML::Value << r.reprojection_rms;
+  }
   out << YAML::Key << "compute_time" << YAML::Value << r.compute_time;
   out << YAML::Key << "used" << YAML::Value;
   emitList(out, r.used);
@@ -301,6 +313,17 @@ StoredCalibration loadCalibration(const std::string& path) {
     auto st = rd.numbers(root, "std_dev_translation", "", 3), sr = rd.numbers(root, "std_dev_rotation", "", 3);
     r.std_translation = Eigen::Vector3d(st[0], st[1], st[2]);
     r.std_rotation = Eigen::Vector3d(sr[0], sr[1], sr[2]);
+    // Files written before the pixel-level fit have no covariance (has_covariance stays false).
+    if (root["fixed_point_covariance"]) {
+      const auto fc = rd.numbers(root, "fixed_point_covariance", "", 36);
+      const auto mc = rd.numbers(root, "marker_offset_covariance", "", 36);
+      r.fixed_point_covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6>>(fc.data());
+      r.marker_offset_covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6>>(mc.data());
+      r.arm_joint_offset_std = rd.numbers(root, "arm_joint_offset_std", "", 0);
+      r.head_joint_offset_std = rd.numbers(root, "head_joint_offset_std", "", 0);
+      if (root["reprojection_rms"]) r.reprojection_rms = root["reprojection_rms"].as<double>();
+      r.has_covariance = true;
+    }
     if (root["compute_time"]) r.compute_time = root["compute_time"].as<double>();
     if (root["used"]) r.used = root["used"].as<std::vector<int>>();
     for (const auto& rej : root["rejected"]) {
@@ -331,6 +354,25 @@ StoredCalibration loadCalibration(const std::string& path) {
     throw std::runtime_error("calibration file '" + path + "': " + e.what());
   }
   return c;
+}
+
+std::string overwriteRefusal(const Result& fresh, const std::string& path, double max_uncertainty) {
+  if (!(max_uncertainty > 0) || !fresh.has_covariance || 3 * fresh.sigmaTranslation() <= max_uncertainty) return "";
+  Result saved;
+  try {
+    saved = loadCalibration(path).result;
+  } catch (const std::exception&) {
+    return "";  // nothing good to keep
+  }
+  if (saved.has_covariance && 3 * saved.sigmaTranslation() > max_uncertainty) return "";
+  char b[400];
+  std::snprintf(b, sizeof b,
+                "calibration not saved: its uncertainty (3 sigma) %.3f mm is above ~max_uncertainty %.3f mm; the "
+                "saved calibration %s (%s) and the published frame are unchanged",
+                3000 * fresh.sigmaTranslation(), 1000 * max_uncertainty, path.c_str(),
+                saved.has_covariance ? ("3 sigma " + std::to_string(3000 * saved.sigmaTranslation()).substr(0, 5) + " mm").c_str()
+                                     : "no uncertainty recorded");
+  return b;
 }
 
 }  // namespace friend_calibration

@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include <boost/filesystem.hpp>
+
 #include "imagenets/registry.h"
 #include "imagenets/xml_escape.h"
 
@@ -34,6 +36,19 @@ std::string typeColor(const std::string& type_name) {
 
 
 namespace {
+
+// Paths are stored resolved (absolute); the picture shows them as a net file would write them:
+// relative to the net file's folder when near it (at most two levels up), so no machine's
+// checkout path shows.
+std::string relativeToNet(const std::string& path, const std::string& base_dir) {
+  namespace fs = boost::filesystem;
+  if (path.empty() || path[0] != '/' || base_dir.empty()) return path;
+  const fs::path relative = fs::path(path).lexically_normal().lexically_relative(fs::absolute(base_dir).lexically_normal());
+  int up = 0;
+  for (const auto& part : relative) up += part == "..";
+  if (relative.empty() || up > 2) return path;
+  return relative.string();
+}
 
 // Draws the blocks and links of `net`; node ids get `prefix` so nested nets do not clash.
 void drawNet(std::ostream& os, const Net& net, const std::string& prefix, bool expand, std::set<std::string>& types,
@@ -71,6 +86,7 @@ void drawNet(std::ostream& os, const Net& net, const std::string& prefix, bool e
       const PropertyValue v = b.propertyValue(spec.name());
       if (v == spec.defaultValue()) continue;
       std::string text = toString(v);
+      if (spec.isPath()) text = relativeToNet(text, net.baseDir());
       if (text.size() > 48) text = "..." + text.substr(text.size() - 45);
       os << "<tr><td colspan=\"2\" align=\"left\"><font point-size=\"8\">" << xmlEscape(spec.name()) << " = "
          << xmlEscape(text) << "</font></td></tr>";
@@ -80,7 +96,7 @@ void drawNet(std::ostream& os, const Net& net, const std::string& prefix, bool e
       const Net& inner = *b.subNet();
       const std::string inner_prefix = id + "_";
       os << indent << "subgraph cluster_" << id << " {\n"
-         << indent << "  label=\"" << xmlEscape(n.name) << ": " << xmlEscape(inner.origin()) << "\"; style=rounded; "
+         << indent << "  label=\"" << xmlEscape(n.name) << ": " << xmlEscape(relativeToNet(inner.origin(), net.baseDir())) << "\"; style=rounded; "
          << "color=\"#888888\";\n";
       drawNet(os, inner, inner_prefix, expand, types, indent + "  ");
       os << indent << "}\n";

@@ -291,4 +291,9 @@ links: [c.value -> sub.x]
   EXPECT_NE(dot.find("subgraph cluster_"), std::string::npos) << dot;
   EXPECT_NE(dot.find("style=dashed"), std::string::npos);
   EXPECT_NE(dot.find("feedback: value (max)"), std::string::npos);
+  // The sub-net's path as written beside the net, not the machine's absolute path.
+  EXPECT_NE(dot.find("net = double.yaml<"), std::string::npos) << dot;
+  EXPECT_NE(dot.find("sub: double.yaml"), std::string::npos) << dot;
+  EXPECT_EQ(dot.find("= /"), std::string::npos) << dot;
+  EXPECT_EQ(dot.find(": /"), std::string::npos) << dot;
 }

@@ -106,6 +106,13 @@ TEST_F(FriendCalibration, RecoversTheTrueFixedPointAndPublishesIt) {
               res.std_dev_translation.z * 1000, res.compute_time, res.total_time);
   EXPECT_LT(mm, 1.0);
   EXPECT_LT(eff_deg, 0.1);
+  // The joint method's pixel-level fit ran on the node's detections and reports its uncertainty.
+  EXPECT_NE(res.message.find("pixel-level bundle adjustment of"), std::string::npos) << res.message;
+  const auto& c = res.fixed_point_covariance;
+  const double bound_mm = 3000 * std::sqrt(c[0] + c[7] + c[14]), bound_deg = 3 * std::sqrt(c[21] + c[28] + c[35]) / kDeg;
+  std::printf("reported uncertainty (3 sigma): %.3f mm / %.4f deg\n", bound_mm, bound_deg);
+  EXPECT_GT(bound_mm, 0.0);
+  EXPECT_LT(bound_mm, 2.0);
   // Published on tf2: base_link -> pth_fixed_point equals the response.
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);

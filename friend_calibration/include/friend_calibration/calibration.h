@@ -14,6 +14,7 @@
 // Plain Eigen (no ROS) so the node, the tool, the study and the tests share it.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -135,6 +136,20 @@ struct Result {
   std::vector<double> residual_translation, residual_rotation;  // per sample (NaN when invalid)
   std::vector<Sample> samples;
   double compute_time = 0.0;  // s
+  // Joint method fitted at pixel level (bundle_adjustment.h; when the detections carry their 8
+  // points and the description's camera models fit them): the uncertainty at the solution,
+  // scaled by the residual variance. Fixed point and marker offset: 6x6 over (translation m,
+  // rotation vector rad), perturbed on the left in the parent frame: X = (exp(w) R, t + dt).
+  // Joint offsets: standard deviations (rad, 0 = not estimated). All zero when not computed.
+  bool has_covariance = false;
+  Eigen::Matrix<double, 6, 6> fixed_point_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 6> marker_offset_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  std::vector<double> arm_joint_offset_std, head_joint_offset_std;
+  double reprojection_rms = 0.0;  // px, the pixel-level fit's residual (0 = not fitted)
+  // One number each for the fixed point: sqrt(trace) of the translation / rotation block (m, rad);
+  // the true error lies within 3 of it with high probability.
+  double sigmaTranslation() const { return std::sqrt(fixed_point_covariance.topLeftCorner<3, 3>().trace()); }
+  double sigmaRotation() const { return std::sqrt(fixed_point_covariance.bottomRightCorner<3, 3>().trace()); }
 };
 
 // The paper's redundancy (4.2): the mean rotation of all sample frames and the per-axis median of
@@ -148,7 +163,13 @@ Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions
 // poses do not vary enough to observe them). Starts from `paper` (which also decides the outliers).
 Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits);
 
-// Everything: solveSample on each sample, combine, and (method "joint") the joint solution.
+// The joint solution refined by the pixel-level bundle adjustment (bundle_adjustment.h) with the
+// description's stereo camera models, with its covariance; unchanged (the message says why) when
+// the samples carry no points that fit those models.
+void refineAtPixelLevel(const RobotModel& model, Result& joint, const FusionLimits& limits);
+
+// Everything: solveSample on each sample, combine, and (method "joint") the joint solution,
+// refined at pixel level.
 // Throws std::invalid_argument for an unknown method.
 Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std::string& method,
                  const FusionLimits& limits, const CombineOptions& options);

@@ -21,7 +21,9 @@
 // Parameters (private): net (the calibration net file), replay_net (the sample net of replays),
 //   description, marker, calibration_file, redundancy (5), method (joint), poses_per_loop (joint
 //   method, 2), fusion/max_position_difference (m), fusion/max_angle_difference (rad),
-//   min_valid_fraction, replay (file re-solved at start-up), joint_states. The acquisition's
+//   min_valid_fraction, max_uncertainty (m, 3-sigma translation bound above which a calibration
+//   does not replace a good saved one; 0.002, 0 = off), replay (file re-solved at start-up),
+//   joint_states. The acquisition's
 //   settings (speed, timeouts, settling, camera namespace) are properties of the sample net's
 //   blocks: use ~net for a net with other values.
 #pragma once

@@ -26,6 +26,12 @@ std::string saveCalibration(const StoredCalibration& calibration, const std::str
 // Throws std::runtime_error naming the file (and the key) on a missing, empty, incomplete (no CRC
 // line at its end), corrupt (CRC differs) file or bad content.
 StoredCalibration loadCalibration(const std::string& path);
+// Why `fresh` must not replace the calibration saved at `path` ("" = it may): the saved one is
+// good (readable, and its 3-sigma translation bound within `max_uncertainty` when it has one) and
+// the fresh one's 3-sigma translation bound (3 sqrt(trace), m) is above `max_uncertainty`.
+// `max_uncertainty` <= 0: never refuses; a fresh result without covariance (paper method) is not
+// judged.
+std::string overwriteRefusal(const Result& fresh, const std::string& path, double max_uncertainty);
 // Current UTC time as 20261122T041500Z (file names) or 2026-11-22T04:15:00Z (iso = true).
 std::string utcStamp(bool iso);
 

@@ -1,0 +1,222 @@
+// The pixel-level bundle adjustment and its uncertainty on simulated calibrations with known
+// truth: random true robots (the simulator's own error drawing), the joint method's ten poses,
+// the marker's 8 points projected through the true geometry and the description's camera models
+// with pixel noise, each detection's pose fitted to its noisy points as the detector does.
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
+
+#include "friend_calibration/bundle_adjustment.h"
+#include "friend_calibration/calibration_msgs.h"
+#include "friend_calibration/storage.h"
+#include "friend_hw_sim/true_robot.h"
+
+namespace friend_calibration {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+struct Simulated {
+  RobotModel truth;
+  std::vector<Sample> samples;
+};
+
+struct BundleAdjustmentTest : ::testing::Test {
+  RobotModel model{robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath())};
+  StereoCameras cameras = *stereoCamerasOf(model.description(), nullptr);
+  std::vector<Eigen::Vector3d> points = markerDefinedPoints(model.description().marker_size);
+
+  static std::string trueErrorFile() {
+    const std::string desc = robot_description::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
+    return desc.substr(0, desc.size() - std::string("robot.yaml").size()) + "true_error.yaml";
+  }
+
+  // One detection as the detector reports it: noisy distorted points, the pose fitted to them.
+  MarkerObservation observe(const PinholeCamera& camera, const Eigen::Isometry3d& marker_in_camera, double noise_px,
+                            std::mt19937& rng) const {
+    std::normal_distribution<double> noise(0, noise_px);
+    MarkerObservation o;
+    o.found = true;
+    std::vector<cv::Point3d> object;
+    std::vector<cv::Point2d> image;
+    for (const auto& p : points) {
+      const Eigen::Vector2d uv = camera.project(marker_in_camera * p) + Eigen::Vector2d(noise(rng), noise(rng));
+      o.points.push_back(uv);
+      object.emplace_back(p.x(), p.y(), p.z());
+      image.emplace_back(uv.x(), uv.y());
+    }
+    cv::Mat k(3, 3, CV_64F);
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) k.at<double>(r, c) = camera.K(r, c);
+    }
+    cv::Vec3d rvec, tvec;
+    cv::solvePnP(object, image, k, cv::Mat(camera.distortion), rvec, tvec, false, cv::SOLVEPNP_IPPE);
+    cv::Mat rot;
+    cv::Rodrigues(rvec, rot);
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) o.pose.linear()(r, c) = rot.at<double>(r, c);
+      o.pose.translation()[r] = tvec[r];
+    }
+    double ss = 0;
+    for (size_t i = 0; i < points.size(); ++i) ss += (camera.project(o.pose * points[i]) - o.points[i]).squaredNorm();
+    o.reprojection_error = std::sqrt(ss / points.size());
+    o.confidence = 1.0;
+    return o;
+  }
+
+  // A random true robot (seed) seen from the joint method's poses. The encoder offsets of arm
+  // joints 1 and n and of the pan are set to zero: no calibration of this kind can tell them from
+  // the fixed point's and the marker's own rotation (calibration.h).
+  Simulated simulate(int seed, double noise_px) const {
+    auto error = friend_hw_sim::loadTrueError(trueErrorFile(), seed);
+    error.arm_joint_offsets.front() = error.arm_joint_offsets.back() = 0;
+    error.head_joint_offsets.front() = 0;
+    Simulated s{RobotModel(friend_hw_sim::applyTrueError(model.description(), error)), {}};
+    std::mt19937 rng(1000 + seed);
+    for (const auto& pose : calibrationPoses(model, 10, "joint")) {
+      Sample sample;
+      sample.arm_q = pose.arm;
+      sample.head_q = pose.head;
+      const Eigen::Isometry3d marker = s.truth.marker(pose.arm);
+      sample.left = observe(cameras.left, s.truth.leftCamera(pose.head).inverse() * marker, noise_px, rng);
+      sample.right = observe(cameras.right, s.truth.rightCamera(pose.head).inverse() * marker, noise_px, rng);
+      s.samples.push_back(sample);
+    }
+    return s;
+  }
+};
+
+TEST_F(BundleAdjustmentTest, ProjectionMatchesTheRenderersCameraModel) {
+  // PinholeCamera::project is the bundle adjustment's own (templated) projection: it must agree
+  // with OpenCV's, which the renderer and the detector use.
+  const Eigen::Vector3d p(0.12, -0.09, 0.55);
+  std::vector<cv::Point2d> uv;
+  cv::Mat k(3, 3, CV_64F);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) k.at<double>(r, c) = cameras.left.K(r, c);
+  }
+  cv::projectPoints(std::vector<cv::Point3d>{{p.x(), p.y(), p.z()}}, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), k,
+                    cv::Mat(cameras.left.distortion), uv);
+  ASSERT_FALSE(cameras.left.distortion.empty());
+  EXPECT_NEAR(cameras.left.project(p).x(), uv[0].x, 1e-9);
+  EXPECT_NEAR(cameras.left.project(p).y(), uv[0].y, 1e-9);
+}
+
+TEST_F(BundleAdjustmentTest, TrueErrorLiesWithinTheReportedThreeSigmaAndIsNoWorseThanTheOldJointSolve) {
+  const int robots = 12;
+  int within = 0;
+  std::vector<double> ratio_t, ratio_r;
+  double sum_old = 0, sum_ba = 0;
+  for (int seed = 1; seed <= robots; ++seed) {
+    const Simulated sim = simulate(seed, 0.05);
+    const Eigen::Isometry3d truth = sim.truth.headBase();
+    const Result r = calibrate(model, sim.samples, "joint", FusionLimits(), CombineOptions());
+    ASSERT_TRUE(r.success) << r.message;
+    ASSERT_TRUE(r.has_covariance) << r.message;
+    EXPECT_NE(r.message.find("pixel-level bundle adjustment of 20 detections"), std::string::npos) << r.message;
+    // Today's joint solve (3D marker points from each detection's pose) on the same samples.
+    const Result old = solveJointly(model, calibrate(model, sim.samples, "paper", FusionLimits(), CombineOptions()),
+                                    FusionLimits());
+    const double et = (r.fixed_point.translation() - truth.translation()).norm(), er = angleBetween(r.fixed_point, truth);
+    const double old_t = (old.fixed_point.translation() - truth.translation()).norm();
+    sum_old += old_t;
+    sum_ba += et;
+    const bool ok = et <= 3 * r.sigmaTranslation() && er <= 3 * r.sigmaRotation();
+    within += ok;
+    ratio_t.push_back(et / r.sigmaTranslation());
+    ratio_r.push_back(er / r.sigmaRotation());
+    std::printf("robot %2d: joint %.4f mm / %.5f deg; pixel-level %.4f mm / %.5f deg, 3 sigma %.4f mm / %.5f deg %s\n", seed,
+                old_t * 1000, angleBetween(old.fixed_point, truth) / kDeg, et * 1000, er / kDeg,
+                3000 * r.sigmaTranslation(), 3 * r.sigmaRotation() / kDeg, ok ? "" : "OUTSIDE");
+  }
+  std::sort(ratio_t.begin(), ratio_t.end());
+  std::sort(ratio_r.begin(), ratio_r.end());
+  std::printf("within 3 sigma: %d of %d; median error / sigma: translation %.2f, rotation %.2f\n", within, robots,
+              ratio_t[robots / 2], ratio_r[robots / 2]);
+  EXPECT_GE(within, robots - 1);
+  // Honest both ways: the bound is not a wide net that any error falls into.
+  EXPECT_GT(ratio_t[robots / 2], 0.2);
+  EXPECT_GT(ratio_r[robots / 2], 0.2);
+  EXPECT_LE(sum_ba, sum_old);
+}
+
+TEST_F(BundleAdjustmentTest, DetectionsWhosePointsDoNotFitTheCameraModelAreNotUsed) {
+  Simulated sim = simulate(1, 0.05);
+  for (auto& s : sim.samples) {
+    for (auto* o : {&s.left, &s.right}) {
+      for (auto& p : o->points) p += Eigen::Vector2d(4, 0);  // another camera's principal point
+    }
+  }
+  const Result r = calibrate(model, sim.samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_FALSE(r.has_covariance);
+  EXPECT_NE(r.message.find("pixel-level fit skipped: 0 detections with points that fit the camera model (20 do not)"),
+            std::string::npos)
+      << r.message;
+}
+
+TEST_F(BundleAdjustmentTest, TheUncertaintyTravelsThroughTheFileAndTheMessageAndOldFilesStillLoad) {
+  const Result r = calibrate(model, simulate(2, 0.05).samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r.has_covariance) << r.message;
+  EXPECT_GT(r.reprojection_rms, 0.0);
+  EXPECT_GT(r.arm_joint_offset_std[1], 0.0);
+  EXPECT_EQ(r.arm_joint_offset_std[0], 0.0);  // not estimated
+  const auto dir = std::filesystem::temp_directory_path() / ("bundle_adjustment_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  StoredCalibration stored;
+  stored.result = r;
+  ASSERT_EQ(saveCalibration(stored, (dir / "new.yaml").string()), "");
+  const Result loaded = loadCalibration((dir / "new.yaml").string()).result;
+  EXPECT_TRUE(loaded.has_covariance);
+  EXPECT_LT((loaded.fixed_point_covariance - r.fixed_point_covariance).norm(), 1e-12 * r.fixed_point_covariance.norm());
+  EXPECT_LT((loaded.marker_offset_covariance - r.marker_offset_covariance).norm(), 1e-12 * r.marker_offset_covariance.norm());
+  EXPECT_EQ(loaded.head_joint_offset_std, r.head_joint_offset_std);
+  const Result via_msg = fromMsg(toMsg(r, "base_link", "pth_fixed_point"));
+  EXPECT_TRUE(via_msg.has_covariance);
+  EXPECT_EQ(via_msg.fixed_point_covariance, r.fixed_point_covariance);
+  EXPECT_EQ(via_msg.arm_joint_offset_std, r.arm_joint_offset_std);
+  // A file written before the pixel-level fit (no covariance keys) loads without one.
+  stored.result.has_covariance = false;
+  ASSERT_EQ(saveCalibration(stored, (dir / "old.yaml").string()), "");
+  const Result old = loadCalibration((dir / "old.yaml").string()).result;
+  EXPECT_FALSE(old.has_covariance);
+  EXPECT_EQ(old.fixed_point_covariance, (Eigen::Matrix<double, 6, 6>::Zero()));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_F(BundleAdjustmentTest, AGoodCalibrationIsNotOverwrittenByOneWithAnUncertaintyAboveTheLimit) {
+  const Result good = calibrate(model, simulate(3, 0.05).samples, "joint", FusionLimits(), CombineOptions());
+  // Ten times the pixel noise (the detection gates opened to let it through).
+  FusionLimits loose;
+  loose.max_reprojection_error = 5;
+  loose.relative_reprojection_error = 0;
+  loose.max_position_difference = 0.05;
+  loose.max_angle_difference = 0.2;
+  const Result noisy = calibrate(model, simulate(3, 0.5).samples, "joint", loose, CombineOptions());
+  ASSERT_TRUE(good.has_covariance) << good.message;
+  ASSERT_TRUE(noisy.has_covariance) << noisy.message;
+  ASSERT_LT(3 * good.sigmaTranslation(), 0.002);
+  ASSERT_GT(3 * noisy.sigmaTranslation(), 0.003);
+  const auto dir = std::filesystem::temp_directory_path() / ("overwrite_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "pth_fixed_point.yaml").string();
+  EXPECT_EQ(overwriteRefusal(noisy, file, 0.002), "");  // nothing saved yet
+  StoredCalibration stored;
+  stored.result = good;
+  saveCalibration(stored, file);
+  const std::string refusal = overwriteRefusal(noisy, file, 0.002);
+  EXPECT_NE(refusal.find("calibration not saved: its uncertainty (3 sigma)"), std::string::npos) << refusal;
+  EXPECT_NE(refusal.find("above ~max_uncertainty 2.000 mm"), std::string::npos) << refusal;
+  EXPECT_NE(refusal.find(file), std::string::npos) << refusal;
+  EXPECT_EQ(overwriteRefusal(good, file, 0.002), "");
+  EXPECT_EQ(overwriteRefusal(noisy, file, 0.0), "");  // off
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace friend_calibration
