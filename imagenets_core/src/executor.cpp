@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <set>
 #include <thread>
@@ -339,9 +340,11 @@ void Executor::execute(const std::vector<int>& nodes, Store& store, RunReport& r
   std::vector<size_t> waiting(count, 0);
   for (int u : units) waiting[u] = providers[u].size();
 
-  std::mutex done_mutex;
-  std::vector<int> done;
-  auto launch = [&](int u) {
+  // Whoever finishes a unit starts the units it made ready, at once: a unit that blocks its
+  // thread (a sub-net waiting for its twin, a camera) must not hold back the rest of the net.
+  std::mutex schedule_mutex;
+  size_t remaining = units.size();
+  std::function<void(int)> launch = [&](int u) {
     pool_->post([&, u] {
       // After a cancel nothing starts: the rest of the set is skipped (a trial's blocks silently).
       if (cancelled()) {
@@ -351,31 +354,26 @@ void Executor::execute(const std::vector<int>& nodes, Store& store, RunReport& r
       } else {
         runNode(u, store, report, overrides);
       }
-      std::lock_guard<std::mutex> lock(done_mutex);
-      done.push_back(u);
+      std::vector<int> ready;
+      {
+        std::lock_guard<std::mutex> lock(schedule_mutex);
+        --remaining;
+        for (int d : dependents[u]) {
+          if (--waiting[d] == 0) ready.push_back(d);
+        }
+      }
+      for (int d : ready) launch(d);
     });
   };
+  std::vector<int> first;  // collected before any starts: running units change `waiting`
   for (int u : units) {
-    if (waiting[u] == 0) launch(u);
+    if (waiting[u] == 0) first.push_back(u);
   }
-  size_t remaining = units.size();
-  while (remaining > 0) {
-    pool_->helpUntil([&] {
-      std::lock_guard<std::mutex> lock(done_mutex);
-      return !done.empty();
-    });
-    std::vector<int> finished;
-    {
-      std::lock_guard<std::mutex> lock(done_mutex);
-      finished.swap(done);
-    }
-    for (int u : finished) {
-      --remaining;
-      for (int d : dependents[u]) {
-        if (--waiting[d] == 0) launch(d);
-      }
-    }
-  }
+  for (int u : first) launch(u);
+  pool_->helpUntil([&] {
+    std::lock_guard<std::mutex> lock(schedule_mutex);
+    return remaining == 0;
+  });
 }
 
 double Executor::runTrial(int node, double candidate, const Store& base, Store& trial_store) {
