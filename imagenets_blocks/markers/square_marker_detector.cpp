@@ -38,6 +38,8 @@ class SquareMarkerDetector : public Block {
     addProperty<double>("min_inner_side_px", 0.0,
                         "inner corners join the pose fit only when the inner square's sides are this long (px; 0: always)")
         .range(0.0, 10000.0);
+    addProperty<bool>("edge_model", false,
+                      "fit a blurred-edge model to every pixel along each outer edge (dim, noisy, blurred images)");
   }
 
   void process(Context& ctx) override {
@@ -59,6 +61,7 @@ class SquareMarkerDetector : public Block {
     options.min_confidence = ctx.property<double>("min_confidence");
     options.refine_passes = ctx.property<int>("refine_passes");
     options.min_inner_side_px = ctx.property<double>("min_inner_side_px");
+    options.edge_model = ctx.property<bool>("edge_model");
     Eigen::Isometry3d hint;
     if (const auto pose_hint = ctx.input<geometry_msgs::PoseStamped>("pose_hint")) {
       hint = marker::fromPoseMsg(pose_hint->pose);

@@ -242,6 +242,152 @@ bool refineQuad(const cv::Mat& gray, const render::CameraModel& cam, const std::
   return true;
 }
 
+// Fits a blurred straight step edge, I = m + h erf(d / (sqrt(2) s)) with d the pixel's signed
+// distance to the line, to every pixel within `half_band` px of the edge from a to b (normalised,
+// the middle 70 % of it), by Gauss-Newton with Huber weights. Every pixel of the band counts, not
+// one crossing per profile: in dim, noisy images that is what locates the edge. The model is
+// symmetric about the line, so blur does not shift it. False if the fit does not settle.
+bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const cv::Point2d& a, const cv::Point2d& b,
+                    double half_band, cv::Vec3d* line, int* saturated) {
+  const double f = 0.5 * (cam.K(0, 0) + cam.K(1, 1));
+  const cv::Point2d t = (b - a) / cv::norm(b - a);
+  double theta = std::atan2(-t.x, t.y), c = cv::Point2d(std::cos(theta), std::sin(theta)).dot(a);
+  // Candidate pixels: the box around the segment, widened by the band.
+  const std::vector<cv::Point2d> ends = distort({a, b}, cam);
+  const double pad = half_band + 2;
+  const int x0 = std::max(1, static_cast<int>(std::floor(std::min(ends[0].x, ends[1].x) - pad)));
+  const int x1 = std::min(gray.cols - 2, static_cast<int>(std::ceil(std::max(ends[0].x, ends[1].x) + pad)));
+  const int y0 = std::max(1, static_cast<int>(std::floor(std::min(ends[0].y, ends[1].y) - pad)));
+  const int y1 = std::min(gray.rows - 2, static_cast<int>(std::ceil(std::max(ends[0].y, ends[1].y) + pad)));
+  if (x1 <= x0 || y1 <= y0 || (x1 - x0) * (y1 - y0) > 200000) return false;
+  // Only pixels near the edge in the image are undistorted (the costly step): the distorted edge
+  // is straight to well within the margin `pad` leaves over the band.
+  const cv::Point2d e = ends[1] - ends[0];
+  const double e_len = cv::norm(e);
+  if (e_len < 4) return false;
+  const cv::Point2d et = e / e_len, en(et.y, -et.x);
+  std::vector<cv::Point2d> px;
+  std::vector<double> value;
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const cv::Point2d r = cv::Point2d(x, y) - ends[0];
+      const double along = r.dot(et) / e_len;
+      if (std::abs(r.dot(en)) > pad || along < 0.1 || along > 0.9) continue;
+      px.emplace_back(x, y), value.push_back(gray.at<uchar>(y, x));
+    }
+  }
+  const std::vector<cv::Point2d> q_all = normalise(px, cam);
+  const double len = cv::norm(b - a);
+  std::vector<cv::Point2d> q;
+  std::vector<double> v;
+  for (size_t i = 0; i < q_all.size(); ++i) {
+    const double u = (q_all[i] - a).dot(t) / len;
+    const double d = f * (cv::Point2d(std::cos(theta), std::sin(theta)).dot(q_all[i]) - c);
+    if (u > 0.15 && u < 0.85 && std::abs(d) <= half_band) q.push_back(q_all[i]), v.push_back(value[i]);
+  }
+  if (q.size() < 20) return false;
+  *saturated = static_cast<int>(std::count_if(v.begin(), v.end(), [](double x) { return x >= 254.5; }));
+  // Start: the two sides' means, a 1 px blur.
+  double lo = 0, hi = 0;
+  int n_lo = 0, n_hi = 0;
+  for (size_t i = 0; i < q.size(); ++i) {
+    const double d = f * (cv::Point2d(std::cos(theta), std::sin(theta)).dot(q[i]) - c);
+    if (d < 0) lo += v[i], ++n_lo;
+    else hi += v[i], ++n_hi;
+  }
+  if (n_lo < 5 || n_hi < 5) return false;
+  double m = 0.5 * (lo / n_lo + hi / n_hi), h = 0.5 * (hi / n_hi - lo / n_lo), s = 1.0;
+  if (std::abs(h) < 3) return false;
+  double lambda = 1e-3, huber = 0;
+  // A saturated pixel (over-exposed paper) only says the model is at least as bright: clipping
+  // would otherwise pull the edge towards the dark side.
+  auto residual = [](double value, double model) { return value >= 254.5 ? std::min(0.0, value - model) : value - model; };
+  auto cost = [&](double th, double cc, double mm, double hh, double ss, double k) {
+    double sum = 0;
+    const cv::Point2d n(std::cos(th), std::sin(th));
+    for (size_t i = 0; i < q.size(); ++i) {
+      const double r = residual(v[i], mm + hh * std::erf(f * (n.dot(q[i]) - cc) / (M_SQRT2 * ss)));
+      sum += std::abs(r) <= k ? r * r : 2 * k * std::abs(r) - k * k;
+    }
+    return sum;
+  };
+  for (int iter = 0; iter < 30; ++iter) {
+    const cv::Point2d n(std::cos(theta), std::sin(theta)), dn(-std::sin(theta), std::cos(theta));
+    // Huber threshold from the residuals' robust spread (noise, pattern cells near the band).
+    std::vector<double> abs_r(q.size());
+    for (size_t i = 0; i < q.size(); ++i) {
+      abs_r[i] = std::abs(residual(v[i], m + h * std::erf(f * (n.dot(q[i]) - c) / (M_SQRT2 * s))));
+    }
+    std::nth_element(abs_r.begin(), abs_r.begin() + abs_r.size() / 2, abs_r.end());
+    huber = std::max(1.0, 2.0 * 1.4826 * abs_r[abs_r.size() / 2]);
+    Eigen::Matrix<double, 5, 5> JtJ = Eigen::Matrix<double, 5, 5>::Zero();
+    Eigen::Matrix<double, 5, 1> Jtr = Eigen::Matrix<double, 5, 1>::Zero();
+    for (size_t i = 0; i < q.size(); ++i) {
+      const double d = f * (n.dot(q[i]) - c), z = d / (M_SQRT2 * s);
+      const double e = std::erf(z), g = h * M_2_SQRTPI * std::exp(-z * z) / (M_SQRT2 * s);  // dI/dd
+      const double r = residual(v[i], m + h * e);
+      if (v[i] >= 254.5 && r == 0) continue;  // saturated and the model bright enough: no information
+      const double w = std::abs(r) <= huber ? 1.0 : huber / std::abs(r);
+      Eigen::Matrix<double, 5, 1> J;
+      J << g * f * dn.dot(q[i]), -g * f, 1.0, e, -g * d / s;  // d model / d (theta, c, m, h, s)
+      JtJ += w * J * J.transpose();
+      Jtr += w * J * r;
+    }
+    const double before = cost(theta, c, m, h, s, huber);
+    bool improved = false;
+    for (int tries = 0; tries < 8 && !improved; ++tries) {
+      Eigen::Matrix<double, 5, 5> A = JtJ;
+      A.diagonal() *= 1 + lambda;
+      const Eigen::Matrix<double, 5, 1> dx = A.ldlt().solve(Jtr);
+      if (!dx.allFinite()) return false;
+      const double s_new = std::max(0.2, s + dx(4));
+      if (cost(theta + dx(0), c + dx(1), m + dx(2), h + dx(3), s_new, huber) < before) {
+        theta += dx(0), c += dx(1), m += dx(2), h += dx(3), s = s_new;
+        lambda = std::max(1e-6, lambda / 4);
+        improved = true;
+        if (dx.head<2>().cwiseAbs().maxCoeff() < 1e-9) iter = 30;
+      } else {
+        lambda *= 8;
+      }
+    }
+    if (!improved) break;
+  }
+  // Settled near where it started, with a plausible blur: otherwise keep the profile estimate.
+  const cv::Point2d mid = 0.5 * (a + b);
+  const double moved = f * std::abs(cv::Point2d(std::cos(theta), std::sin(theta)).dot(mid) - c);
+  if (!(s > 0.2 && s < 6 && moved < 1.5 && std::abs(h) >= 3)) return false;
+  *line = cv::Vec3d(std::cos(theta), std::sin(theta), -c);
+  return true;
+}
+
+// The outer corners again from the edge model of each side (fitBlurredEdge). The band stays
+// inside the black border and the white margin. Unchanged and false if any side does not fit;
+// `clipped`: the white paper is over-exposed along the edges (over 5 % of the band saturated).
+bool fitOuterEdges(const cv::Mat& gray, const render::CameraModel& cam, std::vector<cv::Point2d>* corners_norm,
+                   bool* clipped) {
+  const std::vector<cv::Point2d> px = distort(*corners_norm, cam);
+  std::vector<cv::Vec3d> lines(4);
+  int saturated = 0, pixels = 0;
+  for (int k = 0; k < 4; ++k) {
+    const double side_px = cv::norm(px[k] - px[(k + 1) % 4]);
+    const double half_band = std::min(5.0, 0.2 * side_px);
+    int n_saturated = 0;
+    if (half_band < 1.5) return false;
+    if (!fitBlurredEdge(gray, cam, (*corners_norm)[k], (*corners_norm)[(k + 1) % 4], half_band, &lines[k], &n_saturated)) {
+      return false;
+    }
+    saturated += n_saturated;
+    pixels += static_cast<int>(2 * half_band * 0.7 * side_px);
+  }
+  std::vector<cv::Point2d> out(4);
+  for (int k = 0; k < 4; ++k) {
+    if (!intersect(lines[(k + 3) % 4], lines[k], &out[k])) return false;
+  }
+  *corners_norm = out;
+  *clipped = saturated > 0.05 * pixels;
+  return true;
+}
+
 double zeroMeanNcc(const cv::Mat& a, const cv::Mat& b) {
   cv::Scalar ma, sa, mb, sb;
   cv::meanStdDev(a, ma, sa);
@@ -363,6 +509,12 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
     return result;
   }
 
+  // With the edge model the outer corners alone give the better pose, except on over-exposed
+  // paper, where the inner corners' opposite shift cancels the outer ones' (inner_weight).
+  bool clipped = false;
+  const bool edge_fitted =
+      options.edge_model && options.refine_passes > 0 && fitOuterEdges(gray, camera, &best.outer_norm, &clipped);
+
   // Put the corners in marker order: after k clockwise quarter turns of the rectified patch the
   // marker's top-left corner is image corner (4 - k) % 4.
   std::vector<cv::Point2d> outer(4);
@@ -390,7 +542,8 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   // A small inner square (far away, seen steeply) lies among the pattern's cells: its blurred edges
   // have no bright plateau and its corners are off by up to a pixel. Then only the outer corners fit.
   const bool use_inner =
-      options.min_inner_side_px <= 0 || (inner_refined && inner_side_px >= options.min_inner_side_px);
+      (options.min_inner_side_px <= 0 || (inner_refined && inner_side_px >= options.min_inner_side_px)) &&
+      (!edge_fitted || clipped);
 
   std::vector<cv::Point2d> image_norm(outer);
   image_norm.insert(image_norm.end(), inner_norm.begin(), inner_norm.end());

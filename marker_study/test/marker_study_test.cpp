@@ -80,10 +80,14 @@ TEST(MarkerStudy, HarderConditionsMeetTheTargetsAgainstAprilTag) {
                              std::to_string(ours.median_mm) + " vs " + std::to_string(april.median_mm) + " mm";
     // The default detection finds the marker whenever libapriltag does, in every condition.
     if (t.method == "detect") EXPECT_TRUE(t.rate_ok) << what;
-    // Everything at once (down to 15 % light at up to 1.5 m with up to 6 levels of noise) is not met:
-    // there the error is the sensor noise on a dim, small marker (docs/marker-study.md). Every single
-    // harder condition is, by both nets.
-    if (t.condition == "combined") continue;
+    // Everything at once (down to 15 % light at up to 1.5 m with up to 6 levels of noise): the
+    // default net's edge model keeps the median error below half of libapriltag's; the calibration
+    // net (no edge model yet, docs/marker-study.md) does not. Every single harder condition is met
+    // by both nets.
+    if (t.condition == "combined") {
+      if (t.method == "detect") EXPECT_TRUE(t.median_ok) << what;
+      continue;
+    }
     EXPECT_TRUE(t.rate_ok) << what;
     EXPECT_TRUE(t.median_ok) << what;
   }

@@ -54,6 +54,9 @@ struct DetectorOptions {
   double min_confidence = 0.5;  // below: found = false
   double min_side_px = 12.0;    // candidate quads with a shorter side are ignored
   int refine_passes = 2;        // sub-pixel edge refinement passes on the gray image (0 = none)
+  // After the refinement, fit a blurred-step model to every pixel along each outer edge (more
+  // accurate in dim, noisy, blurred images, where single profile crossings are noisy).
+  bool edge_model = false;
   int pattern_cells = 32;       // resolution of the rectified pattern compared with the marker's
   // Weight of the 4 inner corners in the pose fit relative to the outer ones. 2 (the ratio of
   // their distances from the centre) cancels a common shift of every edge towards the dark side,
