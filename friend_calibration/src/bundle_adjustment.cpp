@@ -367,6 +367,8 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
   out.head_joint_offsets = head_full;
   for (size_t i = 0; i < layout.arm.size(); ++i) out.arm_joint_offsets[layout.arm[i]] = arm[i];
   for (size_t i = 0; i < layout.head.size(); ++i) out.head_joint_offsets[layout.head[i]] = head[i];
+  out.determined = 3 * std::sqrt(out.fixed_point_covariance.topLeftCorner<3, 3>().trace()) < prior_translation &&
+                   out.fixed_point_covariance.trace() > 0;
   out.ok = true;
   char b[200];
   std::snprintf(b, sizeof b, "pixel-level bundle adjustment of %d detections: %.3f px RMS (noise %.3f px)", out.observations,

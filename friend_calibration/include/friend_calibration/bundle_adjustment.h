@@ -56,6 +56,10 @@ struct BundleAdjustment {
   Eigen::Matrix<double, 6, 6> fixed_point_covariance = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 6> marker_offset_covariance = Eigen::Matrix<double, 6, 6>::Zero();
   std::vector<double> arm_joint_offset_std, head_joint_offset_std;
+  // The images determine the fixed point: its 3-sigma translation bound is below the marker
+  // offset's prior sigma. Not so with one relative motion (a single joint loop: the marker
+  // offset's rotation about the motion's axis is free, 3 sigma ~0.5 m); the priors decide then.
+  bool determined = false;
   double noise_sigma = 0.0;      // px, robust estimate of the point noise from the residuals
   double reprojection_rms = 0.0; // px, over the used points
   int observations = 0;          // detections used (left and right count separately)
