@@ -300,6 +300,14 @@ RobotModel withJointOffsets(const RobotModel& model, const std::vector<double>& 
   return RobotModel(std::move(d));
 }
 
+RobotModel calibratedModel(const RobotModel& nominal, const Result& result) {
+  robot_description::RobotDescription d =
+      withJointOffsets(nominal, result.arm_joint_offsets, result.head_joint_offsets).description();
+  d.head.mount = result.fixed_point;
+  d.marker.pose = result.marker_offset;
+  return RobotModel(std::move(d));
+}
+
 Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits) {
   Result r = paper;
   r.method = "joint";

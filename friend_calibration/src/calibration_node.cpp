@@ -102,6 +102,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       marker_(imagenets::marker::MarkerDescription::load(
           pnh.param<std::string>("marker", packageFile("config/markers/gripper.yaml")))) {
   calibration_file_ = pnh_.param<std::string>("calibration_file", defaultCalibrationFile());
+  urdf_file_ = pnh_.param<std::string>("urdf_file", urdfFileBeside(calibration_file_));
   default_redundancy_ = pnh_.param("redundancy", 5);
   default_method_ = pnh_.param<std::string>("method", "joint");
   poses_per_loop_ = pnh_.param("poses_per_loop", 2);
@@ -325,6 +326,15 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     stored.result = r;
     const std::string archived = saveCalibration(stored, calibration_file_);
     res.file = calibration_file_;
+    stored.file = calibration_file_;
+    std::string urdf_note;
+    try {
+      saveCalibratedUrdf(model_, stored, urdf_file_);
+      res.urdf_file = urdf_file_;
+      urdf_note = "; calibrated URDF " + urdf_file_;
+    } catch (const std::exception& e) {
+      urdf_note = std::string("; calibrated URDF NOT written: ") + e.what() + " (the calibration itself is saved)";
+    }
     const std::string pictures = r.samples.empty() ? "" : savePictures(last_pair, r.samples.back());
     publish(r, child_frame_);
     publishSampleMarkers(r);
@@ -332,7 +342,7 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     char b[256];
     std::snprintf(b, sizeof b, "; fixed point [%.4f %.4f %.4f] m; saved to %s", t.x(), t.y(), t.z(),
                   calibration_file_.c_str());
-    res.message = r.message + b + (archived.empty() ? "" : " (previous kept as " + archived + ")") +
+    res.message = r.message + b + (archived.empty() ? "" : " (previous kept as " + archived + ")") + urdf_note +
                   (pictures.empty() ? "" : "; pictures: " + pictures);
     ROS_INFO("%s", res.message.c_str());
   } catch (const std::exception& e) {

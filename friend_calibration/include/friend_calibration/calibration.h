@@ -176,6 +176,10 @@ Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std
 
 // The model with joint zero offsets added to its DH theta offsets (empty vectors: unchanged).
 RobotModel withJointOffsets(const RobotModel& model, const std::vector<double>& arm, const std::vector<double>& head);
+// The nominal model with a calibration applied: the head's mount replaced by the fixed point, the
+// marker offset by the estimated one, the estimated joint zero offsets added (the calibrated URDF
+// is generated from it, storage.h).
+RobotModel calibratedModel(const RobotModel& nominal, const Result& result);
 
 // Rotation angle between two frames (rad) and the distance between their origins (m).
 double angleBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);

@@ -12,6 +12,9 @@ namespace robot_description {
 // Joint i of a chain becomes a revolute joint from link i-1 to an intermediate "<joint>_rotor"
 // link (origin Rz(theta_offset), axis z), then a fixed joint Tz(d) Tx(a) Rx(alpha) to link i, so
 // TF of link i equals the DH frame i exactly.
-std::string generateUrdf(const RobotDescription& description, const std::string& robot_name = "friend");
+// `note`: lines put in a comment at the top (e.g. what a calibration changed); "--" is not allowed
+// in an XML comment and is written as "- -".
+std::string generateUrdf(const RobotDescription& description, const std::string& robot_name = "friend",
+                         const std::string& note = "");
 
 }  // namespace robot_description
