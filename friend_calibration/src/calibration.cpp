@@ -96,7 +96,7 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
   // obliquely for the detector.
   auto visible = [&](const CalibrationPose& p) {
     if (!cameras) return true;
-    const double margin = 0.05 * d.image_width, max_oblique = 50 * M_PI / 180;
+    const double margin = 0.15 * d.image_width, max_oblique = 50 * M_PI / 180;
     for (bool right : {false, true}) {
       const Eigen::Isometry3d m = (right ? model.rightCamera(p.head) : model.leftCamera(p.head)).inverse() * model.marker(p.arm);
       if (-m.linear().col(2).dot(m.translation().normalized()) < std::cos(max_oblique)) return false;
