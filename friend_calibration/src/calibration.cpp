@@ -473,10 +473,13 @@ void refineAtPixelLevel(const RobotModel& model, Result& r, const FusionLimits& 
   r.arm_joint_offset_std = ba.arm_joint_offset_std;
   r.head_joint_offset_std = ba.head_joint_offset_std;
   r.reprojection_rms = ba.reprojection_rms;
+  r.unobservable = ba.observability.unobservable;
+  r.condition_number = ba.observability.condition_number;
   perSampleFrames(model, r, limits);
   if (r.has_covariance) {
     r.message += "; 1 sigma " + mm(r.sigmaTranslation()) + " / " + deg(r.sigmaRotation());
   }
+  if (ba.observability.computed()) r.message += "; " + ba.observability.summary();
 }
 
 Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std::string& method,

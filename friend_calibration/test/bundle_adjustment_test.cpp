@@ -72,13 +72,13 @@ struct BundleAdjustmentTest : ::testing::Test {
   // A random true robot (seed) seen from the joint method's poses. The encoder offsets of arm
   // joints 1 and n and of the pan are set to zero: no calibration of this kind can tell them from
   // the fixed point's and the marker's own rotation (calibration.h).
-  Simulated simulate(int seed, double noise_px) const {
+  Simulated simulate(int seed, double noise_px, int poses = 10) const {
     auto error = friend_hw_sim::loadTrueError(trueErrorFile(), seed);
     error.arm_joint_offsets.front() = error.arm_joint_offsets.back() = 0;
     error.head_joint_offsets.front() = 0;
     Simulated s{RobotModel(friend_hw_sim::applyTrueError(model.description(), error)), {}};
     std::mt19937 rng(1000 + seed);
-    for (const auto& pose : calibrationPoses(model, 10, "joint")) {
+    for (const auto& pose : calibrationPoses(model, poses, "joint")) {
       Sample sample;
       sample.arm_q = pose.arm;
       sample.head_q = pose.head;
@@ -180,12 +180,52 @@ TEST_F(BundleAdjustmentTest, TheUncertaintyTravelsThroughTheFileAndTheMessageAnd
   EXPECT_TRUE(via_msg.has_covariance);
   EXPECT_EQ(via_msg.fixed_point_covariance, r.fixed_point_covariance);
   EXPECT_EQ(via_msg.arm_joint_offset_std, r.arm_joint_offset_std);
+  // The observability report too.
+  EXPECT_GT(r.condition_number, 1.0);
+  EXPECT_EQ(loaded.condition_number, r.condition_number);
+  EXPECT_EQ(loaded.unobservable, r.unobservable);
+  EXPECT_EQ(via_msg.condition_number, r.condition_number);
+  EXPECT_EQ(via_msg.unobservable, r.unobservable);
   // A file written before the pixel-level fit (no covariance keys) loads without one.
   stored.result.has_covariance = false;
   ASSERT_EQ(saveCalibration(stored, (dir / "old.yaml").string()), "");
   const Result old = loadCalibration((dir / "old.yaml").string()).result;
   EXPECT_FALSE(old.has_covariance);
   EXPECT_EQ(old.fixed_point_covariance, (Eigen::Matrix<double, 6, 6>::Zero()));
+  EXPECT_EQ(old.condition_number, 0.0);
+  EXPECT_TRUE(old.unobservable.empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST_F(BundleAdjustmentTest, OneLoopOfTwoPosesIsReportedAsLeavingTheMarkersRotationAndTheFixedPointUnobservable) {
+  // One relative motion leaves the marker offset's rotation about that motion's axis free, and
+  // with it the fixed point: the result says which parameters the poses did not determine.
+  const Result r = calibrate(model, simulate(2, 0.05, 2).samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r.has_covariance) << r.message;
+  auto named = [&](const std::string& prefix) {
+    return std::any_of(r.unobservable.begin(), r.unobservable.end(),
+                       [&](const std::string& n) { return n.rfind(prefix, 0) == 0; });
+  };
+  EXPECT_TRUE(named("marker offset r")) << r.message;
+  EXPECT_TRUE(named("fixed point ")) << r.message;
+  EXPECT_NE(r.message.find("not observable from these poses (posterior std > 0.5 x prior): fixed point"),
+            std::string::npos)
+      << r.message;
+  // Ten poses determine everything.
+  const Result ten = calibrate(model, simulate(2, 0.05).samples, "joint", FusionLimits(), CombineOptions());
+  EXPECT_TRUE(ten.unobservable.empty()) << ten.message;
+  EXPECT_NE(ten.message.find("every estimated parameter observable"), std::string::npos) << ten.message;
+  // An infinite condition number survives the file.
+  Result inf = r;
+  inf.condition_number = std::numeric_limits<double>::infinity();
+  const auto dir = std::filesystem::temp_directory_path() / ("unobservable_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  StoredCalibration stored;
+  stored.result = inf;
+  ASSERT_EQ(saveCalibration(stored, (dir / "c.yaml").string()), "");
+  const Result loaded = loadCalibration((dir / "c.yaml").string()).result;
+  EXPECT_TRUE(std::isinf(loaded.condition_number));
+  EXPECT_EQ(loaded.unobservable, r.unobservable);
   std::filesystem::remove_all(dir);
 }
 

@@ -1,5 +1,6 @@
 #include "friend_hw_sim/true_robot.h"
 
+#include <cmath>
 #include <random>
 #include <stdexcept>
 
@@ -14,7 +15,12 @@ using robot_description::fromXyzRpy;
 using robot_description::RobotDescription;
 using namespace robot_description::yaml_fields;
 
-TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override) {
+TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override,
+                                 double magnitude) {
+  if (!(magnitude > 0) || !std::isfinite(magnitude)) {
+    throw std::runtime_error(where + ": the magnitude factor of the random error must be positive, not " +
+                             std::to_string(magnitude));
+  }
   TrueRobotError e;
   if (!node || node.IsNull()) return e;
   if (!node.IsMap()) throw error(where, "expected a map of true-robot error settings");
@@ -37,11 +43,11 @@ TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& wher
   // Random error of the given magnitudes: a direction uniformly on the sphere times the magnitude
   // for the mounts, uniform in +-magnitude for joint offsets.
   const YAML::Node mag = node["random"];
-  const double head_t = numberOr(mag, "head_mount_translation", 0.015, where + ".random");
-  const double head_r = numberOr(mag, "head_mount_rotation_deg", 2.0, where + ".random") * kDeg;
-  const double marker_t = numberOr(mag, "marker_translation", 0.001, where + ".random");
-  const double marker_r = numberOr(mag, "marker_rotation_deg", 0.5, where + ".random") * kDeg;
-  const double joint = numberOr(mag, "joint_offset_deg", 0.1, where + ".random") * kDeg;
+  const double head_t = magnitude * numberOr(mag, "head_mount_translation", 0.015, where + ".random");
+  const double head_r = magnitude * numberOr(mag, "head_mount_rotation_deg", 2.0, where + ".random") * kDeg;
+  const double marker_t = magnitude * numberOr(mag, "marker_translation", 0.001, where + ".random");
+  const double marker_r = magnitude * numberOr(mag, "marker_rotation_deg", 0.5, where + ".random") * kDeg;
+  const double joint = magnitude * numberOr(mag, "joint_offset_deg", 0.1, where + ".random") * kDeg;
   std::mt19937 rng(static_cast<unsigned>(seed));
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
@@ -58,7 +64,7 @@ TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& wher
   return e;
 }
 
-TrueRobotError loadTrueError(const std::string& path, int seed_override) {
+TrueRobotError loadTrueError(const std::string& path, int seed_override, double magnitude) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -66,7 +72,7 @@ TrueRobotError loadTrueError(const std::string& path, int seed_override) {
     throw std::runtime_error("true-robot error file '" + path + "': " + e.what());
   }
   const YAML::Node node = root["true_error"] ? root["true_error"] : root;
-  return trueErrorFromYaml(node, path + ": true_error", seed_override);
+  return trueErrorFromYaml(node, path + ": true_error", seed_override, magnitude);
 }
 
 RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobotError& e) {

@@ -44,6 +44,21 @@ TEST(TrueRobot, SeededErrorsAreRepeatableAndOfTheGivenSize) {
   for (double o : a.arm_joint_offsets) EXPECT_LE(std::abs(o), 0.1 * kDeg);
 }
 
+TEST(TrueRobot, MagnitudeScalesTheRandomErrorAndMustBePositive) {
+  const auto a = loadTrueError("config/friend/true_error.yaml", 5);
+  const auto k = loadTrueError("config/friend/true_error.yaml", 5, 3.0);
+  EXPECT_TRUE(k.head_mount_xyz.isApprox(3.0 * a.head_mount_xyz));  // same direction, three times as far
+  EXPECT_NEAR(k.head_mount_rpy.norm(), 6.0 * kDeg, 1e-12);
+  EXPECT_NEAR(k.arm_joint_offsets[2], 3.0 * a.arm_joint_offsets[2], 1e-15);
+  try {
+    loadTrueError("config/friend/true_error.yaml", 5, -1.0);
+    FAIL() << "a negative magnitude was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("true_error.yaml: true_error: the magnitude factor"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(JointTrajectory, RespectsVelocityLimitsAndEndsAtTheGoal) {
   const std::vector<double> start{0.0, 1.0}, goal{1.0, 0.5}, vmax{0.5, 2.0};
   const JointTrajectory t(start, goal, vmax, 0.5);

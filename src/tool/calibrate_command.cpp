@@ -41,10 +41,9 @@ int calibrate(const Args& args) {
               r.std_dev_translation.x * 1000, r.std_dev_translation.y * 1000, r.std_dev_translation.z * 1000,
               r.std_dev_rotation.x * 180 / M_PI, r.std_dev_rotation.y * 180 / M_PI, r.std_dev_rotation.z * 180 / M_PI,
               r.samples_used, r.samples_rejected);
-  if (r.fixed_point_covariance[0] + r.fixed_point_covariance[7] + r.fixed_point_covariance[14] > 0) {
-    const auto& c = r.fixed_point_covariance;  // row-major 6x6: translation (m), rotation (rad)
-    std::printf("uncertainty of the pixel-level fit (3 sigma = 3 sqrt(trace)): %.3f mm, %.4f deg\n",
-                3000 * std::sqrt(c[0] + c[7] + c[14]), 3 * std::sqrt(c[21] + c[28] + c[35]) * 180 / M_PI);
+  if (run.bound3_mm > 0) {
+    std::printf("uncertainty of the pixel-level fit (3 sigma = 3 sqrt(trace)): %.3f mm, %.4f deg\n", run.bound3_mm,
+                run.bound3_deg);
   }
   std::printf("time: %.3f s compute, %.2f s with motion\n", r.compute_time, r.total_time);
   if (run.have_truth) {

@@ -188,7 +188,7 @@ TEST(Tool, HelpListsEverySubCommandOnOneLine) {
     expectContains(r.output, "usage: imagenets COMMAND");
     const auto names = subCommands(r.output);
     for (const char* known : {"blocks", "validate", "run", "graph", "detect", "print-marker", "marker-study",
-                              "calibrate", "repeatability"}) {
+                              "calibrate", "repeatability", "accuracy-study"}) {
       EXPECT_NE(std::find(names.begin(), names.end(), known), names.end()) << known << " missing in:\n" << r.output;
     }
   }
@@ -232,4 +232,20 @@ TEST(Tool, UnknownCommandAndMissingArgumentsAreUsageErrors) {
   EXPECT_EQ(r.status, 2);
   expectContains(r.output, "--real-speed-runs must be >= 0");
   expectContains(r.output, "usage: imagenets repeatability");
+  r = tool("accuracy-study --magnitude 0");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--magnitude must be positive");
+  expectContains(r.output, "usage: imagenets accuracy-study");
+  r = tool("accuracy-study --reflections 150");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--reflections is a percentage 0..100");
+  r = tool("accuracy-study --pose-sweep 1,x");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--pose-sweep '1,x': 'x' is not a count");
+  r = tool("accuracy-study --loops 4");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--loops must be odd and >= 1, not 4");
+  r = tool("accuracy-study --first-seed 0");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--first-seed must be >= 1");
 }

@@ -26,9 +26,11 @@ struct TrueRobotError {
 
 // Reads `true_error` settings (see config/friend/true_error.yaml). With `seed` > 0 the error is
 // drawn at random with the given magnitudes (repeatable per seed); with seed 0 the explicit values
-// are used. Throws naming the key on bad input.
-TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override = -1);
-TrueRobotError loadTrueError(const std::string& path, int seed_override = -1);
+// are used. `magnitude` scales the `random` magnitudes (a study over robots K times as far off as
+// the file's; ignored for explicit values). Throws naming the key (or the magnitude) on bad input.
+TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override = -1,
+                                 double magnitude = 1.0);
+TrueRobotError loadTrueError(const std::string& path, int seed_override = -1, double magnitude = 1.0);
 // The description of the true robot.
 robot_description::RobotDescription applyTrueError(const robot_description::RobotDescription& nominal,
                                                    const TrueRobotError& error);
