@@ -9,6 +9,7 @@
 #include <ros/package.h>
 #include <yaml-cpp/yaml.h>
 
+#include "robot_description/urdf_kinematics.h"
 #include "robot_description/yaml_fields.h"
 
 namespace robot_description {
@@ -57,6 +58,55 @@ std::vector<double> poseDeg(const YAML::Node& node, const std::string& key, cons
   const std::string bad = c.limitViolation(v);
   if (!bad.empty()) throw error(where + "." + key, bad);
   return v;
+}
+
+// A description whose kinematics are a URDF's (urdf_kinematics.h): `urdf` (relative to the YAML
+// file) and the links to read; the rest as in a DH description.
+RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
+  const std::string w = path;
+  const auto dir = boost::filesystem::path(path).parent_path();
+  auto file = [&](const YAML::Node& node, const char* key) {
+    return node[key] ? (dir / node[key].as<std::string>()).lexically_normal().string() : std::string();
+  };
+  RobotDescription d;
+  d.source = path;
+  try {
+    const UrdfKinematics urdf = UrdfKinematics::fromFile(file(root, "urdf"));
+    const YAML::Node arm = need(root, "arm", w), head = need(root, "head", w);
+    const YAML::Node stereo = need(head, "stereo_camera", w + ": head");
+    const YAML::Node marker = need(arm, "marker", w + ": arm");
+    auto link = [&](const YAML::Node& node, const char* key, const std::string& where) {
+      return need(node, key, where).as<std::string>();
+    };
+    UrdfLinks links;
+    links.base = root["base_frame"] ? root["base_frame"].as<std::string>() : urdf.rootLink();
+    links.arm_tip = link(arm, "tip_link", w + ": arm");
+    links.tool = link(arm, "tool_link", w + ": arm");
+    links.marker = link(marker, "link", w + ": arm.marker");
+    links.hand_camera = link(arm, "hand_camera_link", w + ": arm");
+    links.ft_sensor = link(arm, "ft_sensor_link", w + ": arm");
+    links.head_tip = link(head, "tip_link", w + ": head");
+    links.left_camera = link(stereo, "left_link", w + ": head.stereo_camera");
+    links.right_camera = link(stereo, "right_link", w + ": head.stereo_camera");
+    d.arm.link_prefix = arm["link_prefix"] ? arm["link_prefix"].as<std::string>() : "arm_link_";
+    d.head.link_prefix = head["link_prefix"] ? head["link_prefix"].as<std::string>() : "head_link_";
+    d = withUrdfKinematics(d, urdf, links);
+    if (d.head.joints.size() != 2) throw error(w + ": head.tip_link", "a pan-tilt head has exactly 2 joints");
+    d.marker_size = number(marker, "size", w + ": arm.marker");
+    if (!(d.marker_size > 0)) throw error(w + ": arm.marker.size", "must be positive");
+    const std::string ws = w + ": head.stereo_camera";
+    d.image_width = static_cast<int>(numberOr(stereo, "width", 1024, ws));
+    d.image_height = static_cast<int>(numberOr(stereo, "height", 768, ws));
+    d.left_camera_info = file(stereo, "left_camera_info");
+    d.right_camera_info = file(stereo, "right_camera_info");
+    d.arm_calibration_pose = poseDeg(arm, "calibration_pose_deg", w + ": arm", d.arm);
+    d.arm_home = poseDeg(arm, "home_deg", w + ": arm", d.arm);
+    d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
+    d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error(w + ": " + e.what());
+  }
+  return d;
 }
 
 }  // namespace
@@ -170,6 +220,7 @@ RobotDescription loadRobotDescription(const std::string& path) {
     throw std::runtime_error("robot description '" + path + "': " + e.what());
   }
   const std::string w = path;
+  if (root["urdf"]) return fromUrdf(root, path);
   RobotDescription d;
   d.source = path;
   try {

@@ -128,6 +128,40 @@ TEST(UrdfKinematics, AGeneralUrdfGivesKdlsOwnForwardKinematics) {
   expectSame(urdf.fixedTransform("c", "d"), fromXyzRpy({0, 0.05, 0}, {-0.3, 0, 0}), 1e-12, "bracket");
 }
 
+TEST(UrdfKinematics, ARobotThatExistsOnlyAsAUrdfLoadsThroughItsDescription) {
+  // config/six_axis: robot.yaml names the links of robot.urdf; its chains are KDL's.
+  const RobotDescription d = loadRobotDescription("config/six_axis/robot.yaml");
+  ASSERT_EQ(d.arm.names(), (std::vector<std::string>{"shoulder_pan", "shoulder_lift", "elbow", "forearm_roll",
+                                                     "wrist_pitch", "flange_roll"}));
+  ASSERT_EQ(d.head.names(), (std::vector<std::string>{"pan", "tilt"}));
+  // The fixed point: base_link -> head_mount, the parent link of the pan joint.
+  expectSame(d.head.mount, fromXyzRpy({-0.08, 0.04, 1.28}, {0, 0, 0}), 1e-12, "head mount");
+  EXPECT_NEAR(d.stereo_baseline, 0.12, 1e-12);
+  EXPECT_EQ(d.marker.frame, "gripper_marker");
+  KDL::Tree tree;
+  ASSERT_TRUE(kdl_parser::treeFromFile("config/six_axis/robot.urdf", tree));
+  KDL::Chain to_marker;
+  ASSERT_TRUE(tree.getChain("base_link", "gripper_marker", to_marker));
+  KDL::ChainFkSolverPos_recursive solver(to_marker);
+  const RobotModel model(d);
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 50; ++trial) {
+    const auto q = randomPose(d.arm, rng);
+    KDL::JntArray kq(q.size());
+    for (size_t i = 0; i < q.size(); ++i) kq(i) = q[i];
+    KDL::Frame f;
+    ASSERT_GE(solver.JntToCart(kq, f), 0);
+    Eigen::Isometry3d expected = Eigen::Isometry3d::Identity();
+    for (int r = 0; r < 3; ++r) {
+      expected.translation()[r] = f.p(r);
+      for (int c = 0; c < 3; ++c) expected.linear()(r, c) = f.M(r, c);
+    }
+    expectSame(model.marker(q), expected, 1e-9, "marker, trial " + std::to_string(trial));
+  }
+  // The URDF generated from it (the simulator's robot_state_publisher) gives the same kinematics.
+  checkRoundTrip(d);
+}
+
 TEST(UrdfKinematics, WhatDoesNotFitIsNamed) {
   EXPECT_NE(messageOf([] { UrdfKinematics("<robot name='x'><link name='a'/>", "broken.urdf"); }).find("broken.urdf: not a valid URDF"),
             std::string::npos);
