@@ -35,6 +35,21 @@ std::string messageOf(const std::function<void()>& f) {
   return "(no error)";
 }
 
+// KDL's own forward kinematics of a chain at q.
+Eigen::Isometry3d kdlEnd(const KDL::Chain& chain, const std::vector<double>& q) {
+  KDL::ChainFkSolverPos_recursive solver(chain);
+  KDL::JntArray kq(q.size());
+  for (size_t i = 0; i < q.size(); ++i) kq(i) = q[i];
+  KDL::Frame f;
+  if (solver.JntToCart(kq, f) < 0) throw std::runtime_error("KDL's solver failed");
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    t.translation()[r] = f.p(r);
+    for (int c = 0; c < 3; ++c) t.linear()(r, c) = f.M(r, c);
+  }
+  return t;
+}
+
 void checkRoundTrip(const RobotDescription& dh) {
   const UrdfKinematics urdf(generateUrdf(dh), "generated URDF");
   const RobotDescription read = withUrdfKinematics(dh, urdf, generatedUrdfLinks(dh));
@@ -110,20 +125,11 @@ TEST(UrdfKinematics, AGeneralUrdfGivesKdlsOwnForwardKinematics) {
   ASSERT_TRUE(kdl_parser::treeFromString(xml, tree));
   KDL::Chain kdl_chain;
   ASSERT_TRUE(tree.getChain("base", "tip", kdl_chain));
-  KDL::ChainFkSolverPos_recursive solver(kdl_chain);
   std::mt19937 rng(5);
   for (int trial = 0; trial < 100; ++trial) {
-    KDL::JntArray q(3);
     std::vector<double> v;
-    for (int i = 0; i < 3; ++i) v.push_back(q(i) = std::uniform_real_distribution<double>(-2, 2)(rng));
-    KDL::Frame f;
-    ASSERT_GE(solver.JntToCart(q, f), 0);
-    Eigen::Isometry3d expected = Eigen::Isometry3d::Identity();
-    for (int r = 0; r < 3; ++r) {
-      expected.translation()[r] = f.p(r);
-      for (int c = 0; c < 3; ++c) expected.linear()(r, c) = f.M(r, c);
-    }
-    expectSame(chain.end(v), expected, 1e-9, "trial " + std::to_string(trial));
+    for (int i = 0; i < 3; ++i) v.push_back(std::uniform_real_distribution<double>(-2, 2)(rng));
+    expectSame(chain.end(v), kdlEnd(kdl_chain, v), 1e-9, "trial " + std::to_string(trial));
   }
   expectSame(urdf.fixedTransform("c", "d"), fromXyzRpy({0, 0.05, 0}, {-0.3, 0, 0}), 1e-12, "bracket");
 }
@@ -142,21 +148,11 @@ TEST(UrdfKinematics, ARobotThatExistsOnlyAsAUrdfLoadsThroughItsDescription) {
   ASSERT_TRUE(kdl_parser::treeFromFile("config/six_axis/robot.urdf", tree));
   KDL::Chain to_marker;
   ASSERT_TRUE(tree.getChain("base_link", "gripper_marker", to_marker));
-  KDL::ChainFkSolverPos_recursive solver(to_marker);
   const RobotModel model(d);
   std::mt19937 rng(9);
   for (int trial = 0; trial < 50; ++trial) {
     const auto q = randomPose(d.arm, rng);
-    KDL::JntArray kq(q.size());
-    for (size_t i = 0; i < q.size(); ++i) kq(i) = q[i];
-    KDL::Frame f;
-    ASSERT_GE(solver.JntToCart(kq, f), 0);
-    Eigen::Isometry3d expected = Eigen::Isometry3d::Identity();
-    for (int r = 0; r < 3; ++r) {
-      expected.translation()[r] = f.p(r);
-      for (int c = 0; c < 3; ++c) expected.linear()(r, c) = f.M(r, c);
-    }
-    expectSame(model.marker(q), expected, 1e-9, "marker, trial " + std::to_string(trial));
+    expectSame(model.marker(q), kdlEnd(to_marker, q), 1e-9, "marker, trial " + std::to_string(trial));
   }
   // The URDF generated from it (the simulator's robot_state_publisher) gives the same kinematics.
   checkRoundTrip(d);
