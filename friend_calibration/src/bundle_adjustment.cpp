@@ -19,23 +19,6 @@ using Mat4 = Eigen::Matrix<T, 4, 4>;
 
 Eigen::Matrix4d matrixOf(const Eigen::Isometry3d& t) { return t.matrix(); }
 
-// T(i-1 -> i) = Rz(theta) Tz(d) Tx(a) Rx(alpha), as robot_description::dhTransform.
-template <typename T>
-Mat4<T> dh(const robot_description::DhJoint& j, double q, const T& offset) {
-  const T theta = j.prismatic ? T(j.theta_offset) : T(q + j.theta_offset) + offset;
-  const T d = j.prismatic ? T(j.d + q) : T(j.d);
-  using std::cos;
-  using std::sin;
-  const T ct = cos(theta), st = sin(theta);
-  const double ca = std::cos(j.alpha), sa = std::sin(j.alpha);
-  Mat4<T> m;
-  m << ct, -st * ca, st * sa, T(j.a) * ct,  //
-      st, ct * ca, -ct * sa, T(j.a) * st,   //
-      T(0), T(sa), T(ca), d,                //
-      T(0), T(0), T(0), T(1);
-  return m;
-}
-
 // A frame (rotation R0, translation t0) perturbed on the left by (dt, w): (exp(w) R0, t0 + dt).
 template <typename T>
 Mat4<T> perturbed(const Eigen::Isometry3d& base, const T* p) {
@@ -134,11 +117,14 @@ struct DetectionResidual {
       return T(0);
     };
     Mat4<T> tcp = matrixOf(d.arm.mount).cast<T>();
-    for (size_t j = 0; j < d.arm.joints.size(); ++j) tcp = tcp * dh(d.arm.joints[j], sample->arm_q[j], offsetOf(layout->arm, arm_off, j));
+    for (size_t j = 0; j < d.arm.joints.size(); ++j) {
+      tcp = tcp * robot_description::jointMatrix(d.arm.joints[j], T(sample->arm_q[j]) + offsetOf(layout->arm, arm_off, j));
+    }
     tcp = tcp * matrixOf(d.tool.pose).cast<T>();
     Mat4<T> camera_in_base = perturbed(x0, p[0]);
     for (size_t j = 0; j < d.head.joints.size(); ++j) {
-      camera_in_base = camera_in_base * dh(d.head.joints[j], sample->head_q[j], offsetOf(layout->head, head_off, j));
+      camera_in_base = camera_in_base * robot_description::jointMatrix(d.head.joints[j], T(sample->head_q[j]) +
+                                                                                             offsetOf(layout->head, head_off, j));
     }
     camera_in_base = camera_in_base * matrixOf(d.left_camera.pose).cast<T>();
     if (right) camera_in_base = camera_in_base * matrixOf(model->leftToRight()).cast<T>();

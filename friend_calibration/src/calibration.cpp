@@ -346,8 +346,8 @@ Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions
 
 RobotModel withJointOffsets(const RobotModel& model, const std::vector<double>& arm, const std::vector<double>& head) {
   robot_description::RobotDescription d = model.description();
-  for (size_t i = 0; i < arm.size() && i < d.arm.joints.size(); ++i) d.arm.joints[i].theta_offset += arm[i];
-  for (size_t i = 0; i < head.size() && i < d.head.joints.size(); ++i) d.head.joints[i].theta_offset += head[i];
+  for (size_t i = 0; i < arm.size() && i < d.arm.joints.size(); ++i) d.arm.joints[i].offset += arm[i];
+  for (size_t i = 0; i < head.size() && i < d.head.joints.size(); ++i) d.head.joints[i].offset += head[i];
   return RobotModel(std::move(d));
 }
 
