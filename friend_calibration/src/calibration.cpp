@@ -111,7 +111,7 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
     }
     return true;
   };
-  auto withinLimits = [](const std::vector<robot_description::DhJoint>& joints, const std::vector<double>& q) {
+  auto withinLimits = [](const std::vector<robot_description::ChainJoint>& joints, const std::vector<double>& q) {
     for (size_t j = 0; j < joints.size() && j < q.size(); ++j) {
       if (q[j] < joints[j].min || q[j] > joints[j].max) return false;
     }
