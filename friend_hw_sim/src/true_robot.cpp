@@ -94,4 +94,20 @@ RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobot
   return t;
 }
 
+Eigen::Isometry3d effectiveHeadBase(const RobotDescription& nominal, const TrueRobotError& error) {
+  const Eigen::Isometry3d mount = applyTrueError(nominal, error).head.mount;
+  if (error.head_joint_offsets.empty()) return mount;
+  return mount * Eigen::AngleAxisd(error.head_joint_offsets[0], Eigen::Vector3d::UnitZ());
+}
+
+Eigen::Isometry3d identifiableHeadBase(const RobotDescription& nominal, const TrueRobotError& error) {
+  const Eigen::Isometry3d effective = effectiveHeadBase(nominal, error);
+  if (error.arm_joint_offsets.empty()) return effective;
+  // The true arm stands at encoder angle + offset: the nominal model puts the marker turned back by
+  // the offset about joint 1's axis (z of arm link 0), and a fit of the head follows it.
+  const Eigen::Isometry3d arm_base = nominal.arm.mount;
+  return arm_base * Eigen::AngleAxisd(-error.arm_joint_offsets[0], Eigen::Vector3d::UnitZ()) * arm_base.inverse() *
+         effective;
+}
+
 }  // namespace friend_hw_sim

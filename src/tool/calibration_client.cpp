@@ -117,24 +117,14 @@ CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& m
   std::string error_file;
   int seed = -1;
   double magnitude = 1.0;
-  run.effective = run.truth;
-  run.arm_effective = run.truth;
+  run.effective = run.identifiable = run.truth;
   if (ros::param::get("/friend_sim/true_error", error_file)) {
     ros::param::get("/friend_sim/seed", seed);
     ros::param::get("/friend_sim/magnitude", magnitude);
     try {
       const auto error = friend_hw_sim::loadTrueError(error_file, seed, magnitude);
-      if (!error.head_joint_offsets.empty()) {
-        run.effective = run.truth * Eigen::AngleAxisd(error.head_joint_offsets[0], Eigen::Vector3d::UnitZ());
-      }
-      run.arm_effective = run.effective;
-      if (!error.arm_joint_offsets.empty()) {
-        // The true arm stands at encoder angle + offset; the nominal model puts the marker turned
-        // back by the offset about joint 1's axis (z of arm link 0), and the head with it.
-        const Eigen::Isometry3d arm_base = p->nominal->description().arm.mount;
-        run.arm_effective = arm_base * Eigen::AngleAxisd(-error.arm_joint_offsets[0], Eigen::Vector3d::UnitZ()) *
-                            arm_base.inverse() * run.effective;
-      }
+      run.effective = friend_hw_sim::effectiveHeadBase(p->nominal->description(), error);
+      run.identifiable = friend_hw_sim::identifiableHeadBase(p->nominal->description(), error);
     } catch (const std::exception&) {
     }
   }
@@ -142,8 +132,8 @@ CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& m
   run.error_deg = friend_calibration::angleBetween(run.fixed_point, run.truth) * 180 / M_PI;
   run.effective_error_mm = (run.fixed_point.translation() - run.effective.translation()).norm() * 1000;
   run.effective_error_deg = friend_calibration::angleBetween(run.fixed_point, run.effective) * 180 / M_PI;
-  run.arm_effective_error_mm = (run.fixed_point.translation() - run.arm_effective.translation()).norm() * 1000;
-  run.arm_effective_error_deg = friend_calibration::angleBetween(run.fixed_point, run.arm_effective) * 180 / M_PI;
+  run.identifiable_error_mm = (run.fixed_point.translation() - run.identifiable.translation()).norm() * 1000;
+  run.identifiable_error_deg = friend_calibration::angleBetween(run.fixed_point, run.identifiable) * 180 / M_PI;
   return run;
 }
 
