@@ -295,8 +295,8 @@ Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions
 
 RobotModel withJointOffsets(const RobotModel& model, const std::vector<double>& arm, const std::vector<double>& head) {
   robot_description::RobotDescription d = model.description();
-  for (size_t i = 0; i < arm.size() && i < d.arm.joints.size(); ++i) d.arm.joints[i].theta_offset += arm[i];
-  for (size_t i = 0; i < head.size() && i < d.head.joints.size(); ++i) d.head.joints[i].theta_offset += head[i];
+  for (size_t i = 0; i < arm.size() && i < d.arm.joints.size(); ++i) d.arm.joints[i].offset += arm[i];
+  for (size_t i = 0; i < head.size() && i < d.head.joints.size(); ++i) d.head.joints[i].offset += head[i];
   return RobotModel(std::move(d));
 }
 
@@ -473,10 +473,13 @@ void refineAtPixelLevel(const RobotModel& model, Result& r, const FusionLimits& 
   r.arm_joint_offset_std = ba.arm_joint_offset_std;
   r.head_joint_offset_std = ba.head_joint_offset_std;
   r.reprojection_rms = ba.reprojection_rms;
+  r.unobservable = ba.observability.unobservable;
+  r.condition_number = ba.observability.condition_number;
   perSampleFrames(model, r, limits);
   if (r.has_covariance) {
     r.message += "; 1 sigma " + mm(r.sigmaTranslation()) + " / " + deg(r.sigmaRotation());
   }
+  if (ba.observability.computed()) r.message += "; " + ba.observability.summary();
 }
 
 Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std::string& method,

@@ -241,6 +241,12 @@ std::string saveCalibration(const StoredCalibration& c, const std::string& path)
     out << YAML::Key << "head_joint_offset_std" << YAML::Value;
     emitList(out, r.head_joint_offset_std);
     out << YAML::Key << "reprojection_rms" << YAML::Value << r.reprojection_rms;
+    // Which parameters the poses did not determine (observability.h); inf is written as .inf.
+    out << YAML::Key << "observability" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "condition_number" << YAML::Value << r.condition_number;
+    out << YAML::Key << "unobservable" << YAML::Value;
+    emitList(out, r.unobservable);
+    out << YAML::EndMap;
   }
   out << YAML::Key << "compute_time" << YAML::Value << r.compute_time;
   out << YAML::Key << "used" << YAML::Value;
@@ -380,6 +386,11 @@ StoredCalibration loadCalibration(const std::string& path) {
       r.arm_joint_offset_std = rd.numbers(root, "arm_joint_offset_std", "", 0);
       r.head_joint_offset_std = rd.numbers(root, "head_joint_offset_std", "", 0);
       if (root["reprojection_rms"]) r.reprojection_rms = root["reprojection_rms"].as<double>();
+      // Files written before the observability report have none (condition number 0 = not computed).
+      if (const YAML::Node o = root["observability"]) {
+        r.condition_number = rd.get(o, "condition_number", "observability.").as<double>();
+        r.unobservable = rd.get(o, "unobservable", "observability.").as<std::vector<std::string>>();
+      }
       r.has_covariance = true;
     }
     if (root["compute_time"]) r.compute_time = root["compute_time"].as<double>();

@@ -10,7 +10,7 @@
 
 namespace friend_hw_sim {
 
-using robot_description::DhChain;
+using robot_description::KinematicChain;
 using robot_description::fromXyzRpy;
 using robot_description::RobotDescription;
 using namespace robot_description::yaml_fields;
@@ -81,13 +81,13 @@ RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobot
                  fromXyzRpy(Eigen::Vector3d::Zero(), e.head_mount_rpy) *
                  Eigen::Isometry3d(nominal.head.mount.linear());
   t.marker.pose = nominal.marker.pose * fromXyzRpy(e.marker_xyz, e.marker_rpy);
-  auto add = [](DhChain& c, const std::vector<double>& offsets, const char* what) {
+  auto add = [](KinematicChain& c, const std::vector<double>& offsets, const char* what) {
     if (offsets.empty()) return;
     if (offsets.size() != c.joints.size()) {
       throw std::runtime_error(std::string("true-robot error: ") + what + " has " + std::to_string(offsets.size()) +
                                " joint offsets, the chain has " + std::to_string(c.joints.size()) + " joints");
     }
-    for (size_t i = 0; i < offsets.size(); ++i) c.joints[i].theta_offset += offsets[i];
+    for (size_t i = 0; i < offsets.size(); ++i) c.joints[i].offset += offsets[i];
   };
   add(t.arm, e.arm_joint_offsets, "arm_joint_offsets_deg");
   add(t.head, e.head_joint_offsets, "head_joint_offsets_deg");

@@ -35,12 +35,12 @@ class UrdfWriter {
   }
 
   void joint(const std::string& name, const std::string& type, const std::string& parent, const std::string& child,
-             const Eigen::Isometry3d& pose, const DhJoint* limits = nullptr) {
+             const Eigen::Isometry3d& pose, const ChainJoint* limits = nullptr) {
     out_ << "  <joint name=\"" << name << "\" type=\"" << type << "\">\n";
     out_ << "    <parent link=\"" << parent << "\"/>\n    <child link=\"" << child << "\"/>\n";
     origin(pose);
     if (limits) {
-      out_ << "    <axis xyz=\"0 0 1\"/>\n";
+      out_ << "    <axis xyz=\"" << limits->axis.x() << " " << limits->axis.y() << " " << limits->axis.z() << "\"/>\n";
       out_ << "    <limit lower=\"" << limits->min << "\" upper=\"" << limits->max << "\" effort=\"100\" velocity=\""
            << limits->max_velocity << "\"/>\n";
     }
@@ -84,27 +84,27 @@ UrdfWriter::Shape cylinder(double radius, double length, const std::string& mate
   return s;
 }
 
-void writeChain(UrdfWriter& w, const std::string& base, const DhChain& c, double radius, const std::string& material) {
+void writeChain(UrdfWriter& w, const std::string& base, const KinematicChain& c, double radius, const std::string& material) {
   const std::string link0 = c.link_prefix + "0";
   w.link(link0);
   w.joint(link0 + "_mount", "fixed", base, link0, c.mount);
   for (size_t i = 0; i < c.joints.size(); ++i) {
-    const DhJoint& j = c.joints[i];
+    const ChainJoint& j = c.joints[i];
     const std::string parent = c.link_prefix + std::to_string(i), child = c.link_prefix + std::to_string(i + 1);
     const std::string rotor = j.name + "_rotor";
-    // In the rotor frame (after Rz(q + offset)) the next DH origin sits at the constant (a, 0, d).
+    // The rotor frame moves with the joint; the next link's origin sits at the tip's constant translation.
     std::vector<UrdfWriter::Shape> shapes{cylinder(radius * 1.25, radius * 2.5, "joint_grey")};
-    const Eigen::Vector3d next(j.a, 0, j.d);
+    const Eigen::Vector3d next = j.tip.translation();
     if (next.norm() > 1e-6) shapes.push_back(rod(next, radius, material));
     w.link(rotor, shapes);
-    Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
-    offset.rotate(Eigen::AngleAxisd(j.theta_offset, Eigen::Vector3d::UnitZ()));
-    w.joint(j.name, "revolute", parent, rotor, offset, &j);
-    Eigen::Isometry3d fixed = Eigen::Isometry3d::Identity();
-    fixed.translate(next);
-    fixed.rotate(Eigen::AngleAxisd(j.alpha, Eigen::Vector3d::UnitX()));
+    // The joint's zero offset is part of its origin: URDF consumers (robot_state_publisher, KDL)
+    // apply no offsets of their own.
+    Eigen::Isometry3d origin = j.origin;
+    if (j.prismatic) origin.translate(j.axis * j.offset);
+    else origin.rotate(Eigen::AngleAxisd(j.offset, j.axis));
+    w.joint(j.name, j.prismatic ? "prismatic" : "revolute", parent, rotor, origin, &j);
     w.link(child);
-    w.joint(child + "_dh", "fixed", rotor, child, fixed);
+    w.joint(child + "_dh", "fixed", rotor, child, j.tip);
   }
 }
 

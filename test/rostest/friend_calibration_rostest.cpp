@@ -119,6 +119,10 @@ TEST_F(FriendCalibration, RecoversTheTrueFixedPointAndPublishesIt) {
   std::printf("reported uncertainty (3 sigma): %.3f mm / %.4f deg\n", bound_mm, bound_deg);
   EXPECT_GT(bound_mm, 0.0);
   EXPECT_LT(bound_mm, 2.0);
+  // The default plan's poses determine every estimated parameter.
+  EXPECT_TRUE(res.unobservable.empty()) << res.message;
+  EXPECT_GT(res.condition_number, 1.0);
+  EXPECT_TRUE(std::isfinite(res.condition_number));
   // Published on tf2: base_link -> pth_fixed_point equals the response.
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
@@ -308,6 +312,32 @@ TEST_F(FriendCalibration, ConcurrentTriggerIsRejectedAndCancelKeepsTheFile) {
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED) << client.getState().getText();
   EXPECT_NE(client.getResult()->message.find("cancelled"), std::string::npos) << client.getResult()->message;
   EXPECT_EQ(readFile(file_), before);
+}
+
+TEST_F(FriendCalibration, ThePosesFieldOfTheGoalTakesThatManySamples) {
+  int feedback_of = 0;
+  imagenets::CallingThreadQueue clients;
+  actionlib::SimpleActionClient<imagenets::CalibrateAction> client(clients.nodeHandle(),
+                                                                   "/friend_calibration/calibrate_action", false);
+  ASSERT_TRUE(clients.waitUntil([&client] { return client.isServerConnected(); }, 10));
+  imagenets::CalibrateGoal goal;
+  goal.poses = 3;  // redundancy 0: the node's default (5 loops) would be 10
+  client.sendGoal(goal, {}, {}, [&](const imagenets::CalibrateFeedbackConstPtr& f) { feedback_of = f->samples; });
+  ASSERT_TRUE(clients.waitUntil([&client] { return client.getState().isDone(); }, 180));
+  const auto res = client.getResult();
+  ASSERT_TRUE(res);
+  EXPECT_EQ(feedback_of, 3);
+  EXPECT_EQ(res->samples_used + res->samples_rejected, 3) << res->message;
+  EXPECT_EQ(res->residual_translation.size(), 3u) << res->message;
+  // Whether or not the node keeps it (~max_uncertainty), the result says what its poses determined.
+  EXPECT_GT(res->condition_number, 0.0) << res->message;
+  EXPECT_NE(res->message.find("condition number"), std::string::npos) << res->message;
+  // A negative count is named.
+  imagenets::Calibrate srv;
+  srv.request.poses = -2;
+  ASSERT_TRUE(ros::service::call("/friend_calibration/calibrate", srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("request field 'poses' is -2"), std::string::npos) << srv.response.message;
 }
 
 TEST(FriendCalibrationNet, ABadNetIsNamedAndTheNodeKeepsServing) {

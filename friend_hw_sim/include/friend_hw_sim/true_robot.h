@@ -21,7 +21,7 @@ struct TrueRobotError {
   Eigen::Vector3d head_mount_rpy = Eigen::Vector3d::Zero();  // rad, rotation applied after the mount
   Eigen::Vector3d marker_xyz = Eigen::Vector3d::Zero();
   Eigen::Vector3d marker_rpy = Eigen::Vector3d::Zero();
-  std::vector<double> arm_joint_offsets, head_joint_offsets;  // rad, added to theta_offset
+  std::vector<double> arm_joint_offsets, head_joint_offsets;  // rad, added to the joints' offsets
 };
 
 // Reads `true_error` settings (see config/friend/true_error.yaml). With `seed` > 0 the error is
