@@ -19,6 +19,8 @@ class CalibrationPlan : public imagenets::Block {
     addProperty<int>("loops", 5, "the redundancy N (odd: the per-axis median is one of the samples)").range(1, 999);
     addProperty<int>("poses_per_loop", 2, "joint method: different poses per loop (its unknowns need them)")
         .range(1, 10);
+    addProperty<int>("poses", 0, "number of samples; 0 = loops (paper) or loops x poses_per_loop (joint)")
+        .range(0, 1000);
     addProperty<double>("reapproach_deg", 10.0, "paper method: the arm comes to the pose anew from this far (joint 4)")
         .range(0.0, 45.0);
     addProperty<std::string>("replay", "", "a saved calibration file: replay its samples instead (no robot)").path();
@@ -38,13 +40,18 @@ class CalibrationPlan : public imagenets::Block {
       }
       if (plan->samples == 0) throw imagenets::BlockError("property 'replay': " + plan->replay_file + " holds no samples");
     } else {
-      if (plan->loops % 2 == 0) {
+      const int poses = ctx.property<int>("poses");
+      if (poses == 0 && plan->loops % 2 == 0) {
         throw imagenets::BlockError("property 'loops': redundancy must be odd and >= 1 (the per-axis median needs a "
                                     "middle value), got " + std::to_string(plan->loops));
       }
+      if (poses > 0 && plan->method == "paper" && poses % 2 == 0) {
+        throw imagenets::BlockError("property 'poses': the paper method's samples must be odd (the per-axis median "
+                                    "needs a middle value), got " + std::to_string(poses));
+      }
       const RobotModel& model = robotModel(ctx.property<std::string>("description"));
       const auto& d = model.description();
-      plan->samples = plan->loops * (plan->method == "joint" ? ctx.property<int>("poses_per_loop") : 1);
+      plan->samples = poses > 0 ? poses : plan->loops * (plan->method == "joint" ? ctx.property<int>("poses_per_loop") : 1);
       const double away = ctx.property<double>("reapproach_deg") * M_PI / 180.0;
       for (const auto& pose : calibrationPoses(model, plan->samples, plan->method)) {
         sensor_msgs::JointState arm, head, approach;

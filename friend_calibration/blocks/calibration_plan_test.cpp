@@ -50,3 +50,25 @@ TEST(CalibrationPlan, AReplayPlanCountsTheStoredSamplesAndNamesABadFile) {
   EXPECT_NE(error.find("property 'replay'"), std::string::npos) << error;
   EXPECT_NE(error.find("/nonexistent/pth_fixed_point.yaml"), std::string::npos) << error;
 }
+
+TEST(CalibrationPlan, ThePosesPropertyGivesThatManySamplesWhateverTheLoops) {
+  BlockHarness h("imagenets/CalibrationPlan");
+  h.set("method", std::string("joint")).set("loops", 5).set("poses_per_loop", 2).set("poses", 7);
+  h.run();
+  const auto plan = h.output<imagenets::CalibrationPlan>("plan");
+  ASSERT_TRUE(plan);
+  EXPECT_EQ(plan->samples, 7);
+  EXPECT_EQ(h.output<std_msgs::Int32>("samples")->data, 7);
+  ASSERT_EQ(plan->arm.size(), 7u);
+  const auto poses = calibrationPoses(nominal(), 7, "joint");
+  for (size_t k = 0; k < 7; ++k) EXPECT_EQ(plan->arm[k].position, poses[k].arm);
+  // 0: the loops decide (5 x 2).
+  BlockHarness loops("imagenets/CalibrationPlan");
+  loops.set("method", std::string("joint")).set("loops", 5).set("poses_per_loop", 2).set("poses", 0);
+  loops.run();
+  EXPECT_EQ(loops.output<imagenets::CalibrationPlan>("plan")->samples, 10);
+  // The paper method's median needs an odd count.
+  BlockHarness paper("imagenets/CalibrationPlan");
+  paper.set("method", std::string("paper")).set("poses", 4);
+  EXPECT_NE(paper.runError().find("property 'poses': the paper method's samples must be odd"), std::string::npos);
+}

@@ -19,23 +19,6 @@ using Mat4 = Eigen::Matrix<T, 4, 4>;
 
 Eigen::Matrix4d matrixOf(const Eigen::Isometry3d& t) { return t.matrix(); }
 
-// T(i-1 -> i) = Rz(theta) Tz(d) Tx(a) Rx(alpha), as robot_description::dhTransform.
-template <typename T>
-Mat4<T> dh(const robot_description::DhJoint& j, double q, const T& offset) {
-  const T theta = j.prismatic ? T(j.theta_offset) : T(q + j.theta_offset) + offset;
-  const T d = j.prismatic ? T(j.d + q) : T(j.d);
-  using std::cos;
-  using std::sin;
-  const T ct = cos(theta), st = sin(theta);
-  const double ca = std::cos(j.alpha), sa = std::sin(j.alpha);
-  Mat4<T> m;
-  m << ct, -st * ca, st * sa, T(j.a) * ct,  //
-      st, ct * ca, -ct * sa, T(j.a) * st,   //
-      T(0), T(sa), T(ca), d,                //
-      T(0), T(0), T(0), T(1);
-  return m;
-}
-
 // A frame (rotation R0, translation t0) perturbed on the left by (dt, w): (exp(w) R0, t0 + dt).
 template <typename T>
 Mat4<T> perturbed(const Eigen::Isometry3d& base, const T* p) {
@@ -76,6 +59,37 @@ struct OffsetLayout {
   }
 };
 
+// The estimated parameters in the fit's order, named for the observability report: the fixed
+// point's and the marker offset's translation and rotation (about the parent frame's axes), then
+// the joint offsets by joint name.
+std::vector<std::string> parameterNames(const RobotModel& m, const OffsetLayout& layout) {
+  std::vector<std::string> names;
+  for (const char* frame : {"fixed point ", "marker offset "}) {
+    for (const char* axis : {"x", "y", "z", "rx", "ry", "rz"}) names.push_back(std::string(frame) + axis);
+  }
+  for (size_t j : layout.arm) names.push_back(m.description().arm.joints[j].name + " offset");
+  for (size_t j : layout.head) names.push_back(m.description().head.joints[j].name + " offset");
+  return names;
+}
+// What is known before the fit: the marker offset and the joint offsets their priors; the fixed
+// point (no prior in the fit) is judged against the same mounting tolerance as the marker.
+std::vector<double> priorStd(const OffsetLayout& layout, double translation, double rotation, double offset) {
+  std::vector<double> p;
+  for (int frame = 0; frame < 2; ++frame) {
+    for (int i = 0; i < 6; ++i) p.push_back(i < 3 ? translation : rotation);
+  }
+  p.resize(p.size() + layout.arm.size() + layout.head.size(), offset);
+  return p;
+}
+
+Eigen::MatrixXd denseOf(const ceres::CRSMatrix& crs) {
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) j(r, crs.cols[k]) = crs.values[k];
+  }
+  return j;
+}
+
 // Points of one detection, residuals in noise sigmas. Parameters: fixed point (6), marker
 // offset (6), then the arm offsets and the head offsets when there are any.
 struct DetectionResidual {
@@ -103,11 +117,14 @@ struct DetectionResidual {
       return T(0);
     };
     Mat4<T> tcp = matrixOf(d.arm.mount).cast<T>();
-    for (size_t j = 0; j < d.arm.joints.size(); ++j) tcp = tcp * dh(d.arm.joints[j], sample->arm_q[j], offsetOf(layout->arm, arm_off, j));
+    for (size_t j = 0; j < d.arm.joints.size(); ++j) {
+      tcp = tcp * robot_description::jointMatrix(d.arm.joints[j], T(sample->arm_q[j]) + offsetOf(layout->arm, arm_off, j));
+    }
     tcp = tcp * matrixOf(d.tool.pose).cast<T>();
     Mat4<T> camera_in_base = perturbed(x0, p[0]);
     for (size_t j = 0; j < d.head.joints.size(); ++j) {
-      camera_in_base = camera_in_base * dh(d.head.joints[j], sample->head_q[j], offsetOf(layout->head, head_off, j));
+      camera_in_base = camera_in_base * robot_description::jointMatrix(d.head.joints[j], T(sample->head_q[j]) +
+                                                                                             offsetOf(layout->head, head_off, j));
     }
     camera_in_base = camera_in_base * matrixOf(d.left_camera.pose).cast<T>();
     if (right) camera_in_base = camera_in_base * matrixOf(model->leftToRight()).cast<T>();
@@ -242,8 +259,11 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
   for (size_t i = 0; i < layout.arm.size(); ++i) arm[i] = arm_full[layout.arm[i]];
   for (size_t i = 0; i < layout.head.size(); ++i) head[i] = head_full[layout.head[i]];
   const double prior_translation = 0.03, prior_rotation = 0.175, prior_offset = 0.0035;  // as solveJointly
+  Eigen::MatrixXd jacobian;
+  int data_rows = 0;
   auto solve = [&](double sigma, bool with_covariance) {
     ceres::Problem problem;
+    std::vector<ceres::ResidualBlockId> data_ids, prior_ids;
     std::vector<double*> blocks{x, m};
     if (!arm.empty()) blocks.push_back(arm.data());
     if (!head.empty()) blocks.push_back(head.data());
@@ -259,18 +279,19 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
       if (!arm.empty()) cost->AddParameterBlock(static_cast<int>(arm.size()));
       if (!head.empty()) cost->AddParameterBlock(static_cast<int>(head.size()));
       cost->SetNumResiduals(static_cast<int>(2 * marker_points.size()));
-      problem.AddResidualBlock(cost, nullptr, blocks);
+      data_ids.push_back(problem.AddResidualBlock(cost, nullptr, blocks));
     }
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<MarkerPrior, 6, 6>(
-                                 new MarkerPrior{start.marker_offset, d.marker.pose, prior_translation, prior_rotation}),
-                             nullptr, m);
+    prior_ids.push_back(problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<MarkerPrior, 6, 6>(
+            new MarkerPrior{start.marker_offset, d.marker.pose, prior_translation, prior_rotation}),
+        nullptr, m));
     for (auto* values : {&arm, &head}) {
       if (values->empty()) continue;
       auto* prior = new ceres::DynamicAutoDiffCostFunction<OffsetPrior, 8>(
           new OffsetPrior{static_cast<int>(values->size()), prior_offset});
       prior->AddParameterBlock(static_cast<int>(values->size()));
       prior->SetNumResiduals(static_cast<int>(values->size()));
-      problem.AddResidualBlock(prior, nullptr, values->data());
+      prior_ids.push_back(problem.AddResidualBlock(prior, nullptr, values->data()));
     }
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
@@ -285,33 +306,16 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
       return false;
     }
     if (!with_covariance) return true;
-    ceres::Covariance::Options co;
-    co.algorithm_type = ceres::DENSE_SVD;
-    co.null_space_rank = -1;  // a direction the poses do not observe gets no (infinite) variance, not a crash
-    ceres::Covariance covariance(co);
-    std::vector<std::pair<const double*, const double*>> pairs;
-    for (double* b : blocks) pairs.emplace_back(b, b);
-    if (!covariance.Compute(pairs, &problem)) {
-      out.message = "pixel-level fit: covariance not computable (the poses do not determine every parameter)";
-      return true;
-    }
-    Eigen::Matrix<double, 6, 6, Eigen::RowMajor> c;
-    covariance.GetCovarianceBlock(x, x, c.data());
-    out.fixed_point_covariance = c;
-    covariance.GetCovarianceBlock(m, m, c.data());
-    out.marker_offset_covariance = c;
-    out.arm_joint_offset_std.assign(d.arm.joints.size(), 0.0);
-    out.head_joint_offset_std.assign(d.head.joints.size(), 0.0);
-    if (!arm.empty()) {
-      Eigen::MatrixXd a(arm.size(), arm.size());
-      covariance.GetCovarianceBlock(arm.data(), arm.data(), a.data());
-      for (size_t i = 0; i < arm.size(); ++i) out.arm_joint_offset_std[layout.arm[i]] = std::sqrt(std::max(0.0, a(i, i)));
-    }
-    if (!head.empty()) {
-      Eigen::MatrixXd h(head.size(), head.size());
-      covariance.GetCovarianceBlock(head.data(), head.data(), h.data());
-      for (size_t i = 0; i < head.size(); ++i) out.head_joint_offset_std[layout.head[i]] = std::sqrt(std::max(0.0, h(i, i)));
-    }
+    // The whitened Jacobian at the solution (measurements first, then the priors): the posterior
+    // covariance and which parameters the poses determine (observability.h).
+    ceres::Problem::EvaluateOptions eo;
+    eo.parameter_blocks = blocks;
+    eo.residual_blocks = data_ids;
+    eo.residual_blocks.insert(eo.residual_blocks.end(), prior_ids.begin(), prior_ids.end());
+    ceres::CRSMatrix crs;
+    problem.Evaluate(eo, nullptr, nullptr, nullptr, &crs);
+    jacobian = denseOf(crs);
+    data_rows = static_cast<int>(uses.size() * 2 * marker_points.size());
     return true;
   };
   // Pixel residuals of the current parameters (px), to estimate the noise.
@@ -331,11 +335,13 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
 
   // First with a nominal noise of 0.1 px, then once more with the noise the residuals show (the
   // Huber threshold and the priors' weight depend on it), and the covariance there.
-  if (!solve(0.1, false)) return out;
+  // (Or with the noise the options give, e.g. when predicting what poses will determine.)
+  if (!solve(options.noise_sigma > 0 ? options.noise_sigma : 0.1, false)) return out;
   std::vector<double> r = pixelResiduals();
   std::vector<double> abs_r(r.size());
   std::transform(r.begin(), r.end(), abs_r.begin(), [](double v) { return std::abs(v); });
-  const double sigma = std::max(0.005, 1.4826 * imagenets::frames::median(abs_r));
+  const double sigma =
+      options.noise_sigma > 0 ? options.noise_sigma : std::max(0.005, 1.4826 * imagenets::frames::median(abs_r));
   if (!solve(sigma, true)) return out;
   r = pixelResiduals();
   double ss = 0;
@@ -347,10 +353,19 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
   // Honest scale: the covariance assumed noise `sigma`; if the residuals' variance (per degree of
   // freedom) is larger, the uncertainty is too.
   const double variance_factor = std::max(1.0, ss / std::max(1, static_cast<int>(r.size()) - n_params) / (sigma * sigma));
-  out.fixed_point_covariance *= variance_factor;
-  out.marker_offset_covariance *= variance_factor;
-  for (double& s : out.arm_joint_offset_std) s *= std::sqrt(variance_factor);
-  for (double& s : out.head_joint_offset_std) s *= std::sqrt(variance_factor);
+  out.observability = analyseObservability(jacobian, data_rows, parameterNames(model, layout),
+                                           priorStd(layout, prior_translation, prior_rotation, prior_offset),
+                                           variance_factor);
+  const Eigen::MatrixXd& c = out.observability.covariance;
+  out.fixed_point_covariance = c.block<6, 6>(0, 0);
+  out.marker_offset_covariance = c.block<6, 6>(6, 6);
+  out.arm_joint_offset_std.assign(d.arm.joints.size(), 0.0);
+  out.head_joint_offset_std.assign(d.head.joints.size(), 0.0);
+  for (size_t i = 0; i < layout.arm.size(); ++i) out.arm_joint_offset_std[layout.arm[i]] = std::sqrt(c(12 + i, 12 + i));
+  for (size_t i = 0; i < layout.head.size(); ++i) {
+    const size_t k = 12 + layout.arm.size() + i;
+    out.head_joint_offset_std[layout.head[i]] = std::sqrt(c(k, k));
+  }
 
   // The solution as frames.
   const Eigen::Isometry3d x_start = start.fixed_point, m_start = start.marker_offset;
@@ -376,6 +391,47 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
   if (out.message.empty()) out.message = b;
   else out.message = std::string(b) + "; " + out.message;
   return out;
+}
+
+}  // namespace friend_calibration
+
+namespace friend_calibration {
+
+Observability predictObservability(const RobotModel& model, const StereoCameras& cameras,
+                                   const std::vector<CalibrationPose>& poses, double noise_px) {
+  const auto& d = model.description();
+  const std::vector<Eigen::Vector3d> points = markerDefinedPoints(d.marker_size);
+  // Each pose as the nominal robot would see it: exact points, those of a view that shows the
+  // whole marker in front of the camera.
+  std::vector<Sample> samples;
+  for (const CalibrationPose& pose : poses) {
+    Sample s;
+    s.arm_q = pose.arm;
+    s.head_q = pose.head;
+    const Eigen::Isometry3d marker = model.marker(pose.arm);
+    for (bool right : {false, true}) {
+      const PinholeCamera& camera = right ? cameras.right : cameras.left;
+      MarkerObservation& o = right ? s.right : s.left;
+      o.pose = (right ? model.rightCamera(pose.head) : model.leftCamera(pose.head)).inverse() * marker;
+      o.found = true;
+      for (const auto& p : points) {
+        const Eigen::Vector3d pc = o.pose * p;
+        const Eigen::Vector2d uv = camera.project(pc);
+        if (!(pc.z() > 0) || uv.x() < 0 || uv.y() < 0 || uv.x() > d.image_width || uv.y() > d.image_height) o.found = false;
+        o.points.push_back(uv);
+      }
+      if (o.pose.linear().col(2).dot(o.pose.translation()) >= 0) o.found = false;  // its back to the camera
+    }
+    samples.push_back(std::move(s));
+  }
+  std::vector<const Sample*> use;
+  for (const Sample& s : samples) use.push_back(&s);
+  Result start;
+  start.fixed_point = model.headBase();
+  start.marker_offset = d.marker.pose;
+  BundleAdjustmentOptions options;
+  options.noise_sigma = noise_px;
+  return bundleAdjust(model, cameras, points, use, start, std::numeric_limits<double>::infinity(), options).observability;
 }
 
 }  // namespace friend_calibration

@@ -101,6 +101,8 @@ imagenets::CalibrationResult toMsg(const Result& r, const std::string& base, con
   m.arm_joint_offset_std = r.arm_joint_offset_std;
   m.head_joint_offset_std = r.head_joint_offset_std;
   m.reprojection_rms = r.reprojection_rms;
+  m.unobservable = r.unobservable;
+  m.condition_number = r.condition_number;
   for (const auto& s : r.samples) m.samples.push_back(toMsg(s));
   return m;
 }
@@ -128,6 +130,8 @@ Result fromMsg(const imagenets::CalibrationResult& m) {
   r.arm_joint_offset_std = m.arm_joint_offset_std;
   r.head_joint_offset_std = m.head_joint_offset_std;
   r.reprojection_rms = m.reprojection_rms;
+  r.unobservable = m.unobservable;
+  r.condition_number = m.condition_number;
   for (const auto& s : m.samples) r.samples.push_back(fromMsg(s));
   return r;
 }

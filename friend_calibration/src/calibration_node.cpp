@@ -51,6 +51,8 @@ void fill(Out& out, const Result& r, const std::string& base, const std::string&
   out.residual_translation = r.residual_translation;
   out.residual_rotation = r.residual_rotation;
   out.compute_time = r.compute_time;
+  out.unobservable = r.unobservable;
+  out.condition_number = r.condition_number;
 }
 
 // The detected marker points of one image drawn on it (bgr8): the outer corners as a red
@@ -102,6 +104,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       marker_(imagenets::marker::MarkerDescription::load(
           pnh.param<std::string>("marker", packageFile("config/markers/gripper.yaml")))) {
   calibration_file_ = pnh_.param<std::string>("calibration_file", defaultCalibrationFile());
+  urdf_file_ = pnh_.param<std::string>("urdf_file", urdfFileBeside(calibration_file_));
   default_redundancy_ = pnh_.param("redundancy", 5);
   default_method_ = pnh_.param<std::string>("method", "joint");
   poses_per_loop_ = pnh_.param("poses_per_loop", 2);
@@ -237,6 +240,7 @@ void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
   req.redundancy = goal->redundancy;
   req.replay = goal->replay;
   req.method = goal->method;
+  req.poses = goal->poses;
   auto progress = [this](int k, int n, const std::string& stage) {
     imagenets::CalibrateFeedback f;
     f.sample = k;
@@ -272,8 +276,9 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
       return res;
     }
     busy_ = true;
-    busy_with_ = (req.replay.empty() ? "redundancy " + std::to_string(n) : "replay of " + req.replay) + ", method " +
-                 method + ", started " + utcStamp(true);
+    busy_with_ = (req.replay.empty() ? req.poses > 0 ? std::to_string(req.poses) + " poses" : "redundancy " + std::to_string(n)
+                                     : "replay of " + req.replay) +
+                 ", method " + method + ", started " + utcStamp(true);
   }
   struct Release {
     std::atomic<bool>& b;
@@ -285,16 +290,20 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     if (method != "paper" && method != "joint") {
       throw std::runtime_error("unknown method '" + method + "' (expected 'paper' or 'joint')");
     }
+    if (req.poses < 0) throw std::runtime_error("request field 'poses' is " + std::to_string(req.poses) + " (expected >= 0)");
     // The plan and the solve's limits are the net's properties.
     imagenets::Executor& exec = req.replay.empty() ? *live_ : *replay_;
     exec.setProperty("plan", "method", method);
     exec.setProperty("plan", "replay", req.replay.empty() ? std::string() : boost::filesystem::absolute(req.replay).string());
     exec.setProperty("plan", "loops", n);
     exec.setProperty("plan", "poses_per_loop", poses_per_loop_);
+    exec.setProperty("plan", "poses", static_cast<int>(req.poses));
     exec.setProperty("solve", "max_position_difference", fusion_.max_position_difference);
     exec.setProperty("solve", "max_angle_difference", fusion_.max_angle_difference);
     exec.setProperty("solve", "min_valid_fraction", min_valid_fraction_);
-    const int total = req.replay.empty() ? n * (method == "joint" ? std::max(1, poses_per_loop_) : 1) : 0;
+    const int total = !req.replay.empty() ? 0
+                      : req.poses > 0     ? static_cast<int>(req.poses)
+                                          : n * (method == "joint" ? std::max(1, poses_per_loop_) : 1);
     StereoPair last_pair;
     double detection_time = 0;
     const Result r = runNet(exec, progress, total, &last_pair, &detection_time);
@@ -325,6 +334,15 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     stored.result = r;
     const std::string archived = saveCalibration(stored, calibration_file_);
     res.file = calibration_file_;
+    stored.file = calibration_file_;
+    std::string urdf_note;
+    try {
+      saveCalibratedUrdf(model_, stored, urdf_file_);
+      res.urdf_file = urdf_file_;
+      urdf_note = "; calibrated URDF " + urdf_file_;
+    } catch (const std::exception& e) {
+      urdf_note = std::string("; calibrated URDF NOT written: ") + e.what() + " (the calibration itself is saved)";
+    }
     const std::string pictures = r.samples.empty() ? "" : savePictures(last_pair, r.samples.back());
     publish(r, child_frame_);
     publishSampleMarkers(r);
@@ -332,7 +350,7 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     char b[256];
     std::snprintf(b, sizeof b, "; fixed point [%.4f %.4f %.4f] m; saved to %s", t.x(), t.y(), t.z(),
                   calibration_file_.c_str());
-    res.message = r.message + b + (archived.empty() ? "" : " (previous kept as " + archived + ")") +
+    res.message = r.message + b + (archived.empty() ? "" : " (previous kept as " + archived + ")") + urdf_note +
                   (pictures.empty() ? "" : "; pictures: " + pictures);
     ROS_INFO("%s", res.message.c_str());
   } catch (const std::exception& e) {

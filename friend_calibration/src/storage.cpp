@@ -7,12 +7,17 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include <unistd.h>
 #include <boost/crc.hpp>
 #include <yaml-cpp/yaml.h>
+
+#include "robot_description/urdf_generator.h"
 
 namespace friend_calibration {
 namespace fs = std::filesystem;
@@ -84,6 +89,46 @@ void checkCrc(const std::string& path, const std::string& text) {
   if (written != actual) {
     throw std::runtime_error(file + " is corrupt: it says " + kCrcKey + written + " but its content gives " + actual +
                              " (altered or damaged; calibrate again, or put back an archived copy)");
+  }
+}
+
+// Writes `bytes` to `path` atomically: into a temporary file beside it, renamed over it when
+// complete, so a reader sees the old file or the new one, never a part. `before_rename` runs when
+// the temporary file is complete. Throws naming `what` and the path; the old file is then untouched.
+void writeAtomically(const std::string& path, const std::string& bytes, const std::string& what,
+                     const std::function<void()>& before_rename = {}) {
+  const fs::path target(path);
+  std::error_code ec;
+  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
+  if (ec) throw std::runtime_error("cannot create the directory of '" + path + "': " + ec.message());
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  // Temporary files of a writer that died before its rename (killed, power cut): never used.
+  const fs::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  if (fs::is_directory(dir, ec)) {
+    const std::string prefix = target.filename().string() + ".tmp.";
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      if (e.path().filename().string().rfind(prefix, 0) == 0) fs::remove(e.path(), ec);
+    }
+  }
+  {
+    std::ofstream f(tmp, std::ios::trunc | std::ios::binary);
+    f << bytes;
+    f.flush();
+    if (!f) {
+      fs::remove(tmp, ec);
+      throw std::runtime_error("cannot write " + what + " '" + tmp + "'");
+    }
+  }
+  try {
+    if (before_rename) before_rename();
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot move the new " + what + " into place at '" + path + "': " + ec.message());
   }
 }
 
@@ -196,6 +241,12 @@ std::string saveCalibration(const StoredCalibration& c, const std::string& path)
     out << YAML::Key << "head_joint_offset_std" << YAML::Value;
     emitList(out, r.head_joint_offset_std);
     out << YAML::Key << "reprojection_rms" << YAML::Value << r.reprojection_rms;
+    // Which parameters the poses did not determine (observability.h); inf is written as .inf.
+    out << YAML::Key << "observability" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "condition_number" << YAML::Value << r.condition_number;
+    out << YAML::Key << "unobservable" << YAML::Value;
+    emitList(out, r.unobservable);
+    out << YAML::EndMap;
   }
   out << YAML::Key << "compute_time" << YAML::Value << r.compute_time;
   out << YAML::Key << "used" << YAML::Value;
@@ -242,46 +293,59 @@ std::string saveCalibration(const StoredCalibration& c, const std::string& path)
   char crc_line[40];
   std::snprintf(crc_line, sizeof crc_line, "%s0x%08x\n", kCrcKey, crc32(body));
 
-  const fs::path target(path);
-  std::error_code ec;
-  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-  if (ec) throw std::runtime_error("cannot create the directory of '" + path + "': " + ec.message());
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  // Temporary files of a writer that died before its rename (killed, power cut): never used.
-  if (fs::is_directory(target.parent_path().empty() ? "." : target.parent_path(), ec)) {
-    const std::string prefix = target.filename().string() + ".tmp.";
-    for (const auto& e : fs::directory_iterator(target.parent_path().empty() ? "." : target.parent_path(), ec)) {
-      if (e.path().filename().string().rfind(prefix, 0) == 0) fs::remove(e.path(), ec);
-    }
-  }
-  {
-    std::ofstream f(tmp, std::ios::trunc | std::ios::binary);
-    f << body << crc_line;
-    f.flush();
-    if (!f) {
-      fs::remove(tmp, ec);
-      throw std::runtime_error("cannot write calibration '" + tmp + "'");
-    }
-  }
   std::string archived;
-  if (fs::exists(target)) {
+  writeAtomically(path, body + crc_line, "calibration", [&] {
+    const fs::path target(path);
+    if (!fs::exists(target)) return;
     // Keep the previous calibration under its own time stamp (never overwrite an archive).
     const std::string stem = target.stem().string();
     std::string base = (target.parent_path() / (stem + "." + utcStamp(false))).string();
     archived = base + ".yaml";
     for (int k = 1; fs::exists(archived); ++k) archived = base + "_" + std::to_string(k) + ".yaml";
+    std::error_code ec;
     fs::copy_file(target, archived, ec);
-    if (ec) {
-      fs::remove(tmp, ec);
-      throw std::runtime_error("cannot archive the previous calibration to '" + archived + "'");
+    if (ec) throw std::runtime_error("cannot archive the previous calibration to '" + archived + "'");
+  });
+  return archived;
+}
+
+std::string calibratedUrdf(const RobotModel& nominal, const StoredCalibration& c) {
+  const Result& r = c.result;
+  const RobotModel calibrated = calibratedModel(nominal, r);
+  const auto& d = nominal.description();
+  std::ostringstream note;
+  note << std::setprecision(9);
+  auto frame = [&](const Eigen::Isometry3d& t) {
+    const Eigen::Vector3d rpy = robot_description::rpyOf(t.rotation()) * 180.0 / M_PI;
+    note << "xyz [" << t.translation().x() << " " << t.translation().y() << " " << t.translation().z() << "] m, rpy ["
+         << rpy.x() << " " << rpy.y() << " " << rpy.z() << "] deg";
+  };
+  note << "Calibrated (" << r.method << " method, " << (c.created.empty() ? utcStamp(true) : c.created)
+       << ") by friend_calibration_node" << (c.file.empty() ? "" : " into " + c.file) << ":\n  joint "
+       << d.head.link_prefix << "0_mount (" << d.base_frame << " -> " << d.head.link_prefix << "0, the calibrated "
+       << c.child_frame << "): ";
+  frame(r.fixed_point);
+  note << "\n  joint " << d.marker.frame << "_joint (marker offset): ";
+  frame(r.marker_offset);
+  note << "\n  joint zero offsets, folded into the joints' origins (robot_state_publisher ignores <calibration>):";
+  bool any = false;
+  for (const auto& [chain, offsets] : {std::make_pair(&d.arm, &r.arm_joint_offsets), std::make_pair(&d.head, &r.head_joint_offsets)}) {
+    for (size_t i = 0; i < offsets->size() && i < chain->joints.size(); ++i) {
+      if ((*offsets)[i] == 0.0) continue;
+      note << "\n    " << chain->joints[i].name << " " << (*offsets)[i] * 180.0 / M_PI << " deg";
+      any = true;
     }
   }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot move the new calibration into place at '" + path + "': " + ec.message());
-  }
-  return archived;
+  if (!any) note << " none";
+  return robot_description::generateUrdf(calibrated.description(), "friend", note.str());
+}
+
+void saveCalibratedUrdf(const RobotModel& nominal, const StoredCalibration& c, const std::string& path) {
+  writeAtomically(path, calibratedUrdf(nominal, c), "calibrated URDF");
+}
+
+std::string urdfFileBeside(const std::string& calibration_file) {
+  return fs::path(calibration_file).replace_extension(".urdf").string();
 }
 
 StoredCalibration loadCalibration(const std::string& path) {
@@ -322,6 +386,11 @@ StoredCalibration loadCalibration(const std::string& path) {
       r.arm_joint_offset_std = rd.numbers(root, "arm_joint_offset_std", "", 0);
       r.head_joint_offset_std = rd.numbers(root, "head_joint_offset_std", "", 0);
       if (root["reprojection_rms"]) r.reprojection_rms = root["reprojection_rms"].as<double>();
+      // Files written before the observability report have none (condition number 0 = not computed).
+      if (const YAML::Node o = root["observability"]) {
+        r.condition_number = rd.get(o, "condition_number", "observability.").as<double>();
+        r.unobservable = rd.get(o, "unobservable", "observability.").as<std::vector<std::string>>();
+      }
       r.has_covariance = true;
     }
     if (root["compute_time"]) r.compute_time = root["compute_time"].as<double>();

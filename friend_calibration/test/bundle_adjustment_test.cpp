@@ -72,13 +72,16 @@ struct BundleAdjustmentTest : ::testing::Test {
   // A random true robot (seed) seen from the joint method's poses. The encoder offsets of arm
   // joints 1 and n and of the pan are set to zero: no calibration of this kind can tell them from
   // the fixed point's and the marker's own rotation (calibration.h).
-  Simulated simulate(int seed, double noise_px) const {
+  Simulated simulate(int seed, double noise_px, int poses = 10) const {
     auto error = friend_hw_sim::loadTrueError(trueErrorFile(), seed);
     error.arm_joint_offsets.front() = error.arm_joint_offsets.back() = 0;
     error.head_joint_offsets.front() = 0;
+    return simulate(error, seed, noise_px, poses);
+  }
+  Simulated simulate(const friend_hw_sim::TrueRobotError& error, int seed, double noise_px, int poses = 10) const {
     Simulated s{RobotModel(friend_hw_sim::applyTrueError(model.description(), error)), {}};
     std::mt19937 rng(1000 + seed);
-    for (const auto& pose : calibrationPoses(model, 10, "joint")) {
+    for (const auto& pose : calibrationPoses(model, poses, "joint")) {
       Sample sample;
       sample.arm_q = pose.arm;
       sample.head_q = pose.head;
@@ -145,6 +148,39 @@ TEST_F(BundleAdjustmentTest, TrueErrorLiesWithinTheReportedThreeSigmaAndIsNoWors
   EXPECT_LE(sum_ba, sum_old);
 }
 
+// A second robot that exists only as a URDF (config/six_axis: 6 joints, other link lengths, its
+// own pan-tilt head and marker place), read with KDL (robot_description/urdf_kinematics.h): the
+// same calibration (poses, joint method, pixel-level fit) finds its fixed point within the
+// targets and within its reported 3 sigma.
+TEST_F(BundleAdjustmentTest, ASixJointRobotThatExistsOnlyAsAUrdfIsCalibratedToo) {
+  model = RobotModel(robot_description::loadRobotDescription("config/six_axis/robot.yaml"));
+  ASSERT_EQ(model.description().arm.joints.size(), 6u);
+  cameras = *stereoCamerasOf(model.description(), nullptr);
+  points = markerDefinedPoints(model.description().marker_size);
+  friend_hw_sim::TrueRobotError error;  // as config/friend/true_error.yaml's explicit values
+  error.head_mount_xyz = {0.009, -0.008, 0.009};
+  error.head_mount_rpy = Eigen::Vector3d(1.0, -1.2, 1.2) * kDeg;
+  error.marker_xyz = {0.0008, -0.0005, 0.0};
+  error.marker_rpy = Eigen::Vector3d(0.3, -0.2, 0.0) * kDeg;
+  error.arm_joint_offsets = {0, -0.08 * kDeg, 0.04 * kDeg, 0.06 * kDeg, -0.05 * kDeg, 0};
+  error.head_joint_offsets = {0, -0.08 * kDeg};
+  const Simulated sim = simulate(error, 1, 0.05);
+  const Eigen::Isometry3d truth = sim.truth.headBase();
+  const Result r = calibrate(model, sim.samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_GE(r.used.size(), 8u) << r.message;
+  EXPECT_NE(r.message.find("pixel-level bundle adjustment of"), std::string::npos) << r.message;
+  const double et = (r.fixed_point.translation() - truth.translation()).norm(), er = angleBetween(r.fixed_point, truth);
+  std::printf("six_axis: %.4f mm / %.5f deg off the true fixed point, 3 sigma %.4f mm / %.5f deg\n", et * 1000, er / kDeg,
+              3000 * r.sigmaTranslation(), 3 * r.sigmaRotation() / kDeg);
+  EXPECT_LT(et, 0.0005);
+  EXPECT_LT(er, 0.05 * kDeg);
+  EXPECT_LE(et, 3 * r.sigmaTranslation());
+  EXPECT_LE(er, 3 * r.sigmaRotation());
+  // The nominal fixed point it started from was 15 mm / 2 deg off.
+  EXPECT_GT((model.headBase().translation() - truth.translation()).norm(), 0.014);
+}
+
 TEST_F(BundleAdjustmentTest, DetectionsWhosePointsDoNotFitTheCameraModelAreNotUsed) {
   Simulated sim = simulate(1, 0.05);
   for (auto& s : sim.samples) {
@@ -180,12 +216,52 @@ TEST_F(BundleAdjustmentTest, TheUncertaintyTravelsThroughTheFileAndTheMessageAnd
   EXPECT_TRUE(via_msg.has_covariance);
   EXPECT_EQ(via_msg.fixed_point_covariance, r.fixed_point_covariance);
   EXPECT_EQ(via_msg.arm_joint_offset_std, r.arm_joint_offset_std);
+  // The observability report too.
+  EXPECT_GT(r.condition_number, 1.0);
+  EXPECT_EQ(loaded.condition_number, r.condition_number);
+  EXPECT_EQ(loaded.unobservable, r.unobservable);
+  EXPECT_EQ(via_msg.condition_number, r.condition_number);
+  EXPECT_EQ(via_msg.unobservable, r.unobservable);
   // A file written before the pixel-level fit (no covariance keys) loads without one.
   stored.result.has_covariance = false;
   ASSERT_EQ(saveCalibration(stored, (dir / "old.yaml").string()), "");
   const Result old = loadCalibration((dir / "old.yaml").string()).result;
   EXPECT_FALSE(old.has_covariance);
   EXPECT_EQ(old.fixed_point_covariance, (Eigen::Matrix<double, 6, 6>::Zero()));
+  EXPECT_EQ(old.condition_number, 0.0);
+  EXPECT_TRUE(old.unobservable.empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST_F(BundleAdjustmentTest, OneLoopOfTwoPosesIsReportedAsLeavingTheMarkersRotationAndTheFixedPointUnobservable) {
+  // One relative motion leaves the marker offset's rotation about that motion's axis free, and
+  // with it the fixed point: the result says which parameters the poses did not determine.
+  const Result r = calibrate(model, simulate(2, 0.05, 2).samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r.has_covariance) << r.message;
+  auto named = [&](const std::string& prefix) {
+    return std::any_of(r.unobservable.begin(), r.unobservable.end(),
+                       [&](const std::string& n) { return n.rfind(prefix, 0) == 0; });
+  };
+  EXPECT_TRUE(named("marker offset r")) << r.message;
+  EXPECT_TRUE(named("fixed point ")) << r.message;
+  EXPECT_NE(r.message.find("not observable from these poses (posterior std > 0.5 x prior): fixed point"),
+            std::string::npos)
+      << r.message;
+  // Ten poses determine everything.
+  const Result ten = calibrate(model, simulate(2, 0.05).samples, "joint", FusionLimits(), CombineOptions());
+  EXPECT_TRUE(ten.unobservable.empty()) << ten.message;
+  EXPECT_NE(ten.message.find("every estimated parameter observable"), std::string::npos) << ten.message;
+  // An infinite condition number survives the file.
+  Result inf = r;
+  inf.condition_number = std::numeric_limits<double>::infinity();
+  const auto dir = std::filesystem::temp_directory_path() / ("unobservable_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  StoredCalibration stored;
+  stored.result = inf;
+  ASSERT_EQ(saveCalibration(stored, (dir / "c.yaml").string()), "");
+  const Result loaded = loadCalibration((dir / "c.yaml").string()).result;
+  EXPECT_TRUE(std::isinf(loaded.condition_number));
+  EXPECT_EQ(loaded.unobservable, r.unobservable);
   std::filesystem::remove_all(dir);
 }
 

@@ -8,6 +8,7 @@
 
 #include <boost/crc.hpp>
 #include <gtest/gtest.h>
+#include <urdf/model.h>
 
 namespace friend_calibration {
 namespace {
@@ -148,6 +149,69 @@ TEST_F(StorageTest, TruncatedCorruptOrEmptyFilesAreRefused) {
   EXPECT_NE(refusal(altered).find("corrupt"), std::string::npos);
   EXPECT_NE(refusal(whole.substr(0, 100) + "\x01\x02{{[[ garbage" + whole.substr(140)).find("corrupt"), std::string::npos);
   EXPECT_NE(refusal("").find("empty"), std::string::npos);
+}
+
+Eigen::Isometry3d originOf(const urdf::Model& urdf, const std::string& joint) {
+  const auto j = urdf.getJoint(joint);
+  if (!j) throw std::runtime_error("the URDF has no joint '" + joint + "'");
+  const auto& p = j->parent_to_joint_origin_transform;
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  t.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z).toRotationMatrix();
+  return t;
+}
+
+void expectSameFrame(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const std::string& what) {
+  EXPECT_LT((a.translation() - b.translation()).norm(), 1e-9) << what;
+  EXPECT_LT(angleBetween(a, b), 1e-9) << what;
+}
+
+TEST_F(StorageTest, CalibratedUrdfCarriesTheFixedPointMarkerOffsetAndJointOffsets) {
+  StoredCalibration c;
+  c.result = someResult();
+  Result& r = c.result;
+  r.fixed_point = robot_description::fromXyzRpy({-0.04, 0.006, 1.37}, {0.01, -0.02, 0.03});
+  r.marker_offset = robot_description::fromXyzRpy({0.001, 0.046, -0.029}, {-1.55, 0.01, 0.0});
+  r.arm_joint_offsets = {0, 0.01, -0.02, 0.003, 0, 0.004, 0};
+  r.head_joint_offsets = {0, 0.005};
+  const std::string path = (dir / "pth_fixed_point.urdf").string();
+  saveCalibratedUrdf(model, c, path);
+  urdf::Model urdf;
+  ASSERT_TRUE(urdf.initFile(path)) << path;
+  expectSameFrame(originOf(urdf, "head_link_0_mount"), r.fixed_point, "head mount = fixed point");
+  expectSameFrame(originOf(urdf, "gripper_marker_joint"), r.marker_offset, "marker joint = marker offset");
+  // A joint's zero offset turns its origin about the joint axis (z): the nominal origin is the
+  // identity (theta offsets 0 in robot.yaml).
+  const auto& d = model.description();
+  for (size_t i = 0; i < d.arm.joints.size(); ++i) {
+    expectSameFrame(originOf(urdf, d.arm.joints[i].name),
+                    Eigen::Isometry3d(Eigen::AngleAxisd(r.arm_joint_offsets[i], Eigen::Vector3d::UnitZ())),
+                    d.arm.joints[i].name);
+  }
+  expectSameFrame(originOf(urdf, "head_tilt_joint"), Eigen::Isometry3d(Eigen::AngleAxisd(0.005, Eigen::Vector3d::UnitZ())),
+                  "head_tilt_joint");
+  std::ifstream f(path);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("arm_joint_3 -1.14591559 deg"), std::string::npos) << text.substr(0, 800);
+  EXPECT_NE(text.find("robot_state_publisher ignores <calibration>"), std::string::npos);
+  EXPECT_EQ(urdfFileBeside((dir / "pth_fixed_point.yaml").string()), path);
+}
+
+TEST_F(StorageTest, CalibratedUrdfThatCannotBeWrittenIsANamedErrorAndLeavesNoTemporaryFile) {
+  StoredCalibration c;
+  c.result = someResult();
+  // A directory where the file should go (with something in it): the rename fails.
+  const fs::path path = dir / "pth_fixed_point.urdf";
+  fs::create_directories(path / "occupied");
+  try {
+    saveCalibratedUrdf(model, c, path.string());
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("calibrated URDF"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_directory(path / "occupied"));
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
 }
 
 }  // namespace

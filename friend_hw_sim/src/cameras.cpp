@@ -353,7 +353,8 @@ void CameraSim::publish(Camera& cam, const cv::Mat& image, const ros::Time& stam
 void CameraSim::publishStereo() {
   std::lock_guard<std::mutex> lock(render_mutex_);
   const RobotState s = sim_.state();
-  const RobotModel& truth = sim_.truth();
+  const auto truth_now = sim_.truth();  // one true robot for the whole frame
+  const RobotModel& truth = *truth_now;
   const Eigen::Isometry3d marker = truth.marker(s.arm);
   const Eigen::Isometry3d left_pose = truth.leftCamera(s.head), right_pose = truth.rightCamera(s.head);
   const std::uint64_t seed = ++frame_ * 2;
@@ -370,7 +371,8 @@ void CameraSim::publishStereo() {
 void CameraSim::publishHand() {
   std::lock_guard<std::mutex> lock(render_mutex_);
   const RobotState s = sim_.state();
-  const RobotModel& truth = sim_.truth();
+  const auto truth_now = sim_.truth();  // one true robot for the whole frame
+  const RobotModel& truth = *truth_now;
   const Eigen::Isometry3d marker = truth.marker(s.arm), cam = truth.handCamera(s.arm);
   cv::Mat image = renderView(*hand_.renderer, world_, marker_plane_, marker, cam, options(++frame_ * 2), &hand_.cache);
   if (applyFaults(image, hand_, cam, marker)) publish(hand_, image, s.stamp);

@@ -1,5 +1,8 @@
 #include "friend_hw_sim/friend_sim.h"
 
+#include <cmath>
+#include <cstdio>
+
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <sensor_msgs/JointState.h>
@@ -26,9 +29,10 @@ FriendSim::FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
       nominal_(loadRobotDescription(pnh.param<std::string>("description", defaultRobotDescriptionPath()))),
-      truth_(applyTrueError(nominal_.description(),
-                            loadTrueError(pnh.param<std::string>("true_error", packagePath("config/friend/true_error.yaml")),
-                                          pnh.param<int>("seed", -1)))),
+      true_error_file_(pnh.param<std::string>("true_error", packagePath("config/friend/true_error.yaml"))),
+      truth_(std::make_shared<const robot_description::RobotModel>(
+          applyTrueError(nominal_.description(),
+                         loadTrueError(true_error_file_, pnh.param<int>("seed", -1), pnh.param("magnitude", 1.0))))),
       rng_(static_cast<unsigned>(pnh.param<int>("noise_seed", 1))) {
   time_scale_ = pnh_.param("time_scale", 1.0);
   if (!(time_scale_ > 0)) throw std::runtime_error("parameter ~time_scale must be positive");
@@ -46,16 +50,55 @@ FriendSim::FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh)
   }
   set_object_ = nh_.advertiseService("world_model/set", &FriendSim::setObject, this);
   get_object_ = nh_.advertiseService("world_model/get", &FriendSim::getObject, this);
+  set_true_robot_ = pnh_.advertiseService("set_true_robot", &FriendSim::setTrueRobot, this);
   cameras_ = std::make_unique<CameraSim>(nh_, pnh_, *this);
   const double rate = pnh_.param("joint_state_rate", 50.0);
   last_tick_ = ros::Time::now();
   timer_ = nh_.createTimer(ros::Duration(1.0 / rate), &FriendSim::tick, this);
   ROS_INFO("friend_sim: %s, time_scale %.2f; true head mount differs from nominal by %.1f mm",
            d.source.c_str(), time_scale_,
-           (truth_.headBase().translation() - nominal_.headBase().translation()).norm() * 1000);
+           (truth_->headBase().translation() - nominal_.headBase().translation()).norm() * 1000);
 }
 
 FriendSim::~FriendSim() { timer_.stop(); }
+
+std::shared_ptr<const robot_description::RobotModel> FriendSim::truth() const {
+  std::lock_guard<std::mutex> lock(truth_mutex_);
+  return truth_;
+}
+
+bool FriendSim::setTrueRobot(imagenets::SetTrueRobot::Request& req, imagenets::SetTrueRobot::Response& res) {
+  const double magnitude = req.magnitude == 0 ? 1.0 : req.magnitude;
+  std::shared_ptr<const robot_description::RobotModel> next;
+  try {
+    next = std::make_shared<const robot_description::RobotModel>(
+        applyTrueError(nominal_.description(), loadTrueError(true_error_file_, req.seed, magnitude)));
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = std::string("set_true_robot: ") + e.what() + "; the true robot is unchanged";
+    return true;
+  }
+  {
+    std::lock_guard<std::mutex> lock(truth_mutex_);
+    truth_ = next;
+  }
+  // Whoever derives something from the true robot's settings (e.g. a study's effective fixed
+  // point) reads them where a launch file puts them.
+  pnh_.setParam("seed", static_cast<int>(req.seed));
+  pnh_.setParam("magnitude", magnitude);
+  const Eigen::Isometry3d head_base = next->headBase();
+  res.head_base = imagenets::frames::toTransformStamped(head_base, nominal_.description().base_frame,
+                                                        nominal_.description().head.link_prefix + "0", ros::Time::now());
+  char b[256];
+  std::snprintf(b, sizeof b, "true robot: seed %d, magnitude %.2f; head mount %.1f mm, %.2f deg off the nominal one",
+                static_cast<int>(req.seed), magnitude,
+                (head_base.translation() - nominal_.headBase().translation()).norm() * 1000,
+                Eigen::AngleAxisd(nominal_.headBase().linear().transpose() * head_base.linear()).angle() * 180 / M_PI);
+  res.success = true;
+  res.message = b;
+  ROS_INFO("friend_sim: %s", b);
+  return true;
+}
 
 RobotState FriendSim::state() const {
   RobotState s;
@@ -110,18 +153,19 @@ void FriendSim::tick(const ros::TimerEvent&) {
 }
 
 void FriendSim::publishGroundTruth(const RobotState& s) {
-  const auto& d = truth_.description();
+  const auto model = truth();  // one true robot for all frames of this tick
+  const auto& d = model->description();
   const std::string& base = d.base_frame;
   auto pub = [&](const char* key, const Eigen::Isometry3d& t, const std::string& child) {
     auto& p = truth_frames_[key];
     if (p.getNumSubscribers() > 0) p.publish(imagenets::frames::toTransformStamped(t, base, child, s.stamp));
   };
-  pub("tcp", truth_.tcp(s.arm), d.tool.frame);
-  pub("marker", truth_.marker(s.arm), d.marker.frame);
-  pub("hand_camera", truth_.handCamera(s.arm), d.hand_camera.frame);
-  pub("left_camera", truth_.leftCamera(s.head), d.left_camera.frame);
-  pub("right_camera", truth_.rightCamera(s.head), d.right_camera_frame);
-  pub("head_base", truth_.headBase(), d.head.link_prefix + "0");
+  pub("tcp", model->tcp(s.arm), d.tool.frame);
+  pub("marker", model->marker(s.arm), d.marker.frame);
+  pub("hand_camera", model->handCamera(s.arm), d.hand_camera.frame);
+  pub("left_camera", model->leftCamera(s.head), d.left_camera.frame);
+  pub("right_camera", model->rightCamera(s.head), d.right_camera_frame);
+  pub("head_base", model->headBase(), d.head.link_prefix + "0");
 }
 
 void FriendSim::publishWrench(const RobotState& s) {
@@ -133,7 +177,7 @@ void FriendSim::publishWrench(const RobotState& s) {
   pnh_.getParamCached("ft_sensor/torque_noise", tn);
   pnh_.getParamCached("ft_sensor/payload_com", com);
   if (com.size() != 3) com = {0.0, 0.0, 0.09};
-  const Eigen::Isometry3d sensor = truth_.ftSensor(s.arm);
+  const Eigen::Isometry3d sensor = truth()->ftSensor(s.arm);
   const Eigen::Vector3d f = sensor.linear().transpose() * Eigen::Vector3d(0, 0, -9.81 * mass);
   const Eigen::Vector3d tau = Eigen::Vector3d(com[0], com[1], com[2]).cross(f);
   geometry_msgs::WrenchStamped w;

@@ -1,7 +1,7 @@
 // friend_urdf: prints the URDF of the FRIEND robot generated from its DH description, for the
 // robot_description parameter (launch: <param name="robot_description" command="rosrun imagenets
 // friend_urdf --true-error ..."/>).
-//   friend_urdf [--description robot.yaml] [--true-error true_error.yaml] [--seed N] [--name NAME]
+//   friend_urdf [--description robot.yaml] [--true-error true_error.yaml] [--seed N] [--magnitude K] [--name NAME]
 #include <iostream>
 #include <string>
 
@@ -12,6 +12,7 @@
 int main(int argc, char** argv) {
   std::string description = robot_description::defaultRobotDescriptionPath(), error_file, name = "friend";
   int seed = -1;
+  double magnitude = 1.0;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -22,16 +23,17 @@ int main(int argc, char** argv) {
       if (a == "--description") description = value();
       else if (a == "--true-error") error_file = value();
       else if (a == "--seed") seed = std::stoi(value());
+      else if (a == "--magnitude") magnitude = std::stod(value());
       else if (a == "--name") name = value();
       else if (a == "-h" || a == "--help") {
-        std::cout << "usage: friend_urdf [--description robot.yaml] [--true-error true_error.yaml] [--seed N] [--name NAME]\n"
+        std::cout << "usage: friend_urdf [--description robot.yaml] [--true-error true_error.yaml] [--seed N] [--magnitude K] [--name NAME]\n"
                      "Prints the URDF of the nominal robot, or of the simulator's true robot with --true-error.\n";
         return 0;
       } else if (a.rfind("__", 0) == 0) continue;  // roslaunch remapping arguments
       else throw std::runtime_error("unknown argument '" + a + "' (see --help)");
     }
     auto robot = robot_description::loadRobotDescription(description);
-    if (!error_file.empty()) robot = friend_hw_sim::applyTrueError(robot, friend_hw_sim::loadTrueError(error_file, seed));
+    if (!error_file.empty()) robot = friend_hw_sim::applyTrueError(robot, friend_hw_sim::loadTrueError(error_file, seed, magnitude));
     std::cout << robot_description::generateUrdf(robot, name);
   } catch (const std::exception& e) {
     std::cerr << "friend_urdf: " << e.what() << "\n";

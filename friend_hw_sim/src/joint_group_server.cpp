@@ -6,7 +6,7 @@
 
 namespace friend_hw_sim {
 
-JointGroupServer::JointGroupServer(ros::NodeHandle nh, const std::string& action_name, const robot_description::DhChain& chain,
+JointGroupServer::JointGroupServer(ros::NodeHandle nh, const std::string& action_name, const robot_description::KinematicChain& chain,
                                    const std::vector<double>& start, std::string fault_param, unsigned seed)
     : nh_(nh), action_name_(nh.resolveName(action_name)), chain_(chain), fault_param_(std::move(fault_param)), q_(start), qd_(start.size(), 0.0), rng_(seed) {
   if (start.size() != chain.joints.size()) throw std::invalid_argument("JointGroupServer: start size mismatch");

@@ -1,5 +1,6 @@
 #include "friend_hw_sim/true_robot.h"
 
+#include <cmath>
 #include <random>
 #include <stdexcept>
 
@@ -9,12 +10,17 @@
 
 namespace friend_hw_sim {
 
-using robot_description::DhChain;
+using robot_description::KinematicChain;
 using robot_description::fromXyzRpy;
 using robot_description::RobotDescription;
 using namespace robot_description::yaml_fields;
 
-TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override) {
+TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override,
+                                 double magnitude) {
+  if (!(magnitude > 0) || !std::isfinite(magnitude)) {
+    throw std::runtime_error(where + ": the magnitude factor of the random error must be positive, not " +
+                             std::to_string(magnitude));
+  }
   TrueRobotError e;
   if (!node || node.IsNull()) return e;
   if (!node.IsMap()) throw error(where, "expected a map of true-robot error settings");
@@ -37,11 +43,11 @@ TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& wher
   // Random error of the given magnitudes: a direction uniformly on the sphere times the magnitude
   // for the mounts, uniform in +-magnitude for joint offsets.
   const YAML::Node mag = node["random"];
-  const double head_t = numberOr(mag, "head_mount_translation", 0.015, where + ".random");
-  const double head_r = numberOr(mag, "head_mount_rotation_deg", 2.0, where + ".random") * kDeg;
-  const double marker_t = numberOr(mag, "marker_translation", 0.001, where + ".random");
-  const double marker_r = numberOr(mag, "marker_rotation_deg", 0.5, where + ".random") * kDeg;
-  const double joint = numberOr(mag, "joint_offset_deg", 0.1, where + ".random") * kDeg;
+  const double head_t = magnitude * numberOr(mag, "head_mount_translation", 0.015, where + ".random");
+  const double head_r = magnitude * numberOr(mag, "head_mount_rotation_deg", 2.0, where + ".random") * kDeg;
+  const double marker_t = magnitude * numberOr(mag, "marker_translation", 0.001, where + ".random");
+  const double marker_r = magnitude * numberOr(mag, "marker_rotation_deg", 0.5, where + ".random") * kDeg;
+  const double joint = magnitude * numberOr(mag, "joint_offset_deg", 0.1, where + ".random") * kDeg;
   std::mt19937 rng(static_cast<unsigned>(seed));
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
@@ -58,7 +64,7 @@ TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& wher
   return e;
 }
 
-TrueRobotError loadTrueError(const std::string& path, int seed_override) {
+TrueRobotError loadTrueError(const std::string& path, int seed_override, double magnitude) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -66,7 +72,7 @@ TrueRobotError loadTrueError(const std::string& path, int seed_override) {
     throw std::runtime_error("true-robot error file '" + path + "': " + e.what());
   }
   const YAML::Node node = root["true_error"] ? root["true_error"] : root;
-  return trueErrorFromYaml(node, path + ": true_error", seed_override);
+  return trueErrorFromYaml(node, path + ": true_error", seed_override, magnitude);
 }
 
 RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobotError& e) {
@@ -75,17 +81,50 @@ RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobot
                  fromXyzRpy(Eigen::Vector3d::Zero(), e.head_mount_rpy) *
                  Eigen::Isometry3d(nominal.head.mount.linear());
   t.marker.pose = nominal.marker.pose * fromXyzRpy(e.marker_xyz, e.marker_rpy);
-  auto add = [](DhChain& c, const std::vector<double>& offsets, const char* what) {
+  auto add = [](KinematicChain& c, const std::vector<double>& offsets, const char* what) {
     if (offsets.empty()) return;
     if (offsets.size() != c.joints.size()) {
       throw std::runtime_error(std::string("true-robot error: ") + what + " has " + std::to_string(offsets.size()) +
                                " joint offsets, the chain has " + std::to_string(c.joints.size()) + " joints");
     }
-    for (size_t i = 0; i < offsets.size(); ++i) c.joints[i].theta_offset += offsets[i];
+    for (size_t i = 0; i < offsets.size(); ++i) c.joints[i].offset += offsets[i];
   };
   add(t.arm, e.arm_joint_offsets, "arm_joint_offsets_deg");
   add(t.head, e.head_joint_offsets, "head_joint_offsets_deg");
   return t;
+}
+
+namespace {
+
+// A zero offset `delta` of a chain's first joint, seen from the base: the motion of that joint by
+// delta about (along) its axis, in the joint's frame at the mount.
+Eigen::Isometry3d firstJointOffsetMotion(const robot_description::KinematicChain& chain, double delta) {
+  const auto& j = chain.joints.front();
+  const Eigen::Isometry3d pivot = chain.mount * j.origin;
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  if (j.prismatic) {
+    motion.translation() = j.axis * delta;
+  } else {
+    motion.linear() = Eigen::AngleAxisd(delta, j.axis.normalized()).toRotationMatrix();
+  }
+  return pivot * motion * pivot.inverse();
+}
+
+}  // namespace
+
+Eigen::Isometry3d effectiveHeadBase(const RobotDescription& nominal, const TrueRobotError& error) {
+  const RobotDescription truth = applyTrueError(nominal, error);
+  if (error.head_joint_offsets.empty() || truth.head.joints.empty()) return truth.head.mount;
+  // The pan offset turns everything after the mount: folded into it.
+  return firstJointOffsetMotion(truth.head, error.head_joint_offsets[0]) * truth.head.mount;
+}
+
+Eigen::Isometry3d identifiableHeadBase(const RobotDescription& nominal, const TrueRobotError& error) {
+  const Eigen::Isometry3d effective = effectiveHeadBase(nominal, error);
+  if (error.arm_joint_offsets.empty() || nominal.arm.joints.empty()) return effective;
+  // The true arm stands at encoder angle + offset: the nominal model puts the marker moved back by
+  // the offset about joint 1's axis, and a fit of the head follows it.
+  return firstJointOffsetMotion(nominal.arm, -error.arm_joint_offsets[0]) * effective;
 }
 
 }  // namespace friend_hw_sim

@@ -44,7 +44,7 @@ class DhForwardKinematics : public Block {
 
   void process(Context& ctx) override {
     const std::string chain_name = ctx.property<std::string>("chain");
-    robot_description::DhChain chain;
+    robot_description::KinematicChain chain;
     Eigen::Isometry3d tip = Eigen::Isometry3d::Identity();
     if (chain_name == "table") {
       try {
@@ -110,7 +110,7 @@ class DhForwardKinematics : public Block {
   }
 
   static std::vector<double> select(const sensor_msgs::JointState& js, const std::string& names_text,
-                                    const robot_description::DhChain& chain, const std::string& chain_name) {
+                                    const robot_description::KinematicChain& chain, const std::string& chain_name) {
     std::vector<std::string> names;
     std::stringstream list(names_text);
     std::string name;

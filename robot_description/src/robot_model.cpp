@@ -9,6 +9,7 @@
 #include <ros/package.h>
 #include <yaml-cpp/yaml.h>
 
+#include "robot_description/urdf_kinematics.h"
 #include "robot_description/yaml_fields.h"
 
 namespace robot_description {
@@ -25,8 +26,8 @@ FixedFrame fixedFrame(const YAML::Node& node, const std::string& where, const st
   return f;
 }
 
-DhChain chain(const YAML::Node& node, const std::string& where) {
-  DhChain c;
+KinematicChain chain(const YAML::Node& node, const std::string& where) {
+  KinematicChain c;
   c.link_prefix = node["link_prefix"] ? node["link_prefix"].as<std::string>() : where + "_link_";
   c.mount = fixedFrame(need(node, "mount", where), where + ".mount", "").pose;
   const YAML::Node joints = need(node, "joints", where);
@@ -45,12 +46,12 @@ DhChain chain(const YAML::Node& node, const std::string& where) {
     dh.max_velocity = number(j, "max_velocity_deg", w) * kDeg;
     if (!(dh.min < dh.max)) throw error(w, "min_deg must be below max_deg");
     if (!(dh.max_velocity > 0)) throw error(w, "max_velocity_deg must be positive");
-    c.joints.push_back(dh);
+    c.joints.push_back(fromDh(dh));
   }
   return c;
 }
 
-std::vector<double> poseDeg(const YAML::Node& node, const std::string& key, const std::string& where, const DhChain& c) {
+std::vector<double> poseDeg(const YAML::Node& node, const std::string& key, const std::string& where, const KinematicChain& c) {
   if (!node[key]) return std::vector<double>(c.joints.size(), 0.0);
   auto v = numbers(node[key], where + "." + key, c.joints.size());
   for (double& x : v) x *= kDeg;
@@ -59,24 +60,80 @@ std::vector<double> poseDeg(const YAML::Node& node, const std::string& key, cons
   return v;
 }
 
-}  // namespace
-
-Eigen::Isometry3d dhTransform(const DhJoint& j, double q) {
-  const double theta = j.prismatic ? j.theta_offset : q + j.theta_offset;
-  const double d = j.prismatic ? j.d + q : j.d;
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.rotate(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()));
-  t.translate(Eigen::Vector3d(j.a, 0, d));  // Tz(d) Tx(a) commute
-  t.rotate(Eigen::AngleAxisd(j.alpha, Eigen::Vector3d::UnitX()));
-  return t;
+// A description whose kinematics are a URDF's (urdf_kinematics.h): `urdf` (relative to the YAML
+// file) and the links to read; the rest as in a DH description.
+RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
+  const std::string w = path;
+  const auto dir = boost::filesystem::path(path).parent_path();
+  auto file = [&](const YAML::Node& node, const char* key) {
+    return node[key] ? (dir / node[key].as<std::string>()).lexically_normal().string() : std::string();
+  };
+  RobotDescription d;
+  d.source = path;
+  try {
+    const UrdfKinematics urdf = UrdfKinematics::fromFile(file(root, "urdf"));
+    const YAML::Node arm = need(root, "arm", w), head = need(root, "head", w);
+    const YAML::Node stereo = need(head, "stereo_camera", w + ": head");
+    const YAML::Node marker = need(arm, "marker", w + ": arm");
+    auto link = [&](const YAML::Node& node, const char* key, const std::string& where) {
+      return need(node, key, where).as<std::string>();
+    };
+    UrdfLinks links;
+    links.base = root["base_frame"] ? root["base_frame"].as<std::string>() : urdf.rootLink();
+    links.arm_tip = link(arm, "tip_link", w + ": arm");
+    links.tool = link(arm, "tool_link", w + ": arm");
+    links.marker = link(marker, "link", w + ": arm.marker");
+    links.hand_camera = link(arm, "hand_camera_link", w + ": arm");
+    links.ft_sensor = link(arm, "ft_sensor_link", w + ": arm");
+    links.head_tip = link(head, "tip_link", w + ": head");
+    links.left_camera = link(stereo, "left_link", w + ": head.stereo_camera");
+    links.right_camera = link(stereo, "right_link", w + ": head.stereo_camera");
+    d.arm.link_prefix = arm["link_prefix"] ? arm["link_prefix"].as<std::string>() : "arm_link_";
+    d.head.link_prefix = head["link_prefix"] ? head["link_prefix"].as<std::string>() : "head_link_";
+    d = withUrdfKinematics(d, urdf, links);
+    if (d.head.joints.size() != 2) throw error(w + ": head.tip_link", "a pan-tilt head has exactly 2 joints");
+    d.marker_size = number(marker, "size", w + ": arm.marker");
+    if (!(d.marker_size > 0)) throw error(w + ": arm.marker.size", "must be positive");
+    const std::string ws = w + ": head.stereo_camera";
+    d.image_width = static_cast<int>(numberOr(stereo, "width", 1024, ws));
+    d.image_height = static_cast<int>(numberOr(stereo, "height", 768, ws));
+    d.left_camera_info = file(stereo, "left_camera_info");
+    d.right_camera_info = file(stereo, "right_camera_info");
+    d.arm_calibration_pose = poseDeg(arm, "calibration_pose_deg", w + ": arm", d.arm);
+    d.arm_home = poseDeg(arm, "home_deg", w + ": arm", d.arm);
+    d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
+    d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error(w + ": " + e.what());
+  }
+  return d;
 }
 
-std::vector<DhJoint> parseDhTable(const std::vector<double>& flat) {
+}  // namespace
+
+ChainJoint fromDh(const DhJoint& j) {
+  ChainJoint c;
+  c.name = j.name;
+  c.prismatic = j.prismatic;
+  c.offset = j.prismatic ? j.d : j.theta_offset;
+  c.origin = Eigen::Isometry3d(Eigen::AngleAxisd(j.prismatic ? j.theta_offset : 0.0, Eigen::Vector3d::UnitZ()));
+  c.tip = Eigen::Isometry3d::Identity();
+  c.tip.translate(Eigen::Vector3d(j.a, 0, j.prismatic ? 0.0 : j.d));  // Tz(d) Tx(a) commute
+  c.tip.rotate(Eigen::AngleAxisd(j.alpha, Eigen::Vector3d::UnitX()));
+  c.min = j.min;
+  c.max = j.max;
+  c.max_velocity = j.max_velocity;
+  return c;
+}
+
+Eigen::Isometry3d dhTransform(const DhJoint& j, double q) { return Eigen::Isometry3d(jointMatrix(fromDh(j), q)); }
+
+std::vector<ChainJoint> parseDhTable(const std::vector<double>& flat) {
   if (flat.empty() || flat.size() % 4 != 0) {
     throw std::invalid_argument("a DH table needs 4 values per joint (d, theta, a, alpha), got " +
                                 std::to_string(flat.size()));
   }
-  std::vector<DhJoint> joints;
+  std::vector<ChainJoint> joints;
   for (size_t i = 0; i < flat.size(); i += 4) {
     for (size_t k = i; k < i + 4; ++k) {
       if (!std::isfinite(flat[k])) {
@@ -91,7 +148,7 @@ std::vector<DhJoint> parseDhTable(const std::vector<double>& flat) {
     j.alpha = flat[i + 3];
     j.min = -M_PI;
     j.max = M_PI;
-    joints.push_back(j);
+    joints.push_back(fromDh(j));
   }
   return joints;
 }
@@ -116,13 +173,13 @@ Eigen::Vector3d rpyOf(const Eigen::Matrix3d& r) {
   return Eigen::Vector3d(std::atan2(r(2, 1), r(2, 2)), pitch, std::atan2(r(1, 0), r(0, 0)));
 }
 
-std::vector<std::string> DhChain::names() const {
+std::vector<std::string> KinematicChain::names() const {
   std::vector<std::string> n;
   for (const auto& j : joints) n.push_back(j.name);
   return n;
 }
 
-std::vector<Eigen::Isometry3d> DhChain::linkFrames(const std::vector<double>& q) const {
+std::vector<Eigen::Isometry3d> KinematicChain::linkFrames(const std::vector<double>& q) const {
   if (q.size() != joints.size()) {
     throw std::invalid_argument("forward kinematics of '" + link_prefix + "*': expected " +
                                 std::to_string(joints.size()) + " joint angles, got " + std::to_string(q.size()));
@@ -134,11 +191,11 @@ std::vector<Eigen::Isometry3d> DhChain::linkFrames(const std::vector<double>& q)
     }
   }
   std::vector<Eigen::Isometry3d> frames{mount};
-  for (size_t i = 0; i < joints.size(); ++i) frames.push_back(frames.back() * dhTransform(joints[i], q[i]));
+  for (size_t i = 0; i < joints.size(); ++i) frames.push_back(frames.back() * Eigen::Isometry3d(jointMatrix(joints[i], q[i])));
   return frames;
 }
 
-std::string DhChain::limitViolation(const std::vector<double>& q) const {
+std::string KinematicChain::limitViolation(const std::vector<double>& q) const {
   if (q.size() != joints.size()) {
     return "expected " + std::to_string(joints.size()) + " joint positions, got " + std::to_string(q.size());
   }
@@ -163,6 +220,7 @@ RobotDescription loadRobotDescription(const std::string& path) {
     throw std::runtime_error("robot description '" + path + "': " + e.what());
   }
   const std::string w = path;
+  if (root["urdf"]) return fromUrdf(root, path);
   RobotDescription d;
   d.source = path;
   try {

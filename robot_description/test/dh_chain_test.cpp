@@ -10,8 +10,8 @@ using namespace robot_description;
 
 namespace {
 
-DhChain chainOf(const std::vector<double>& flat) {
-  DhChain c;
+KinematicChain chainOf(const std::vector<double>& flat) {
+  KinematicChain c;
   c.link_prefix = "link_";
   c.joints = parseDhTable(flat);
   return c;
@@ -23,9 +23,9 @@ double angleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 
 }  // namespace
 
-TEST(DhChain, PlanarTwoLinkArm) {
+TEST(KinematicChain, PlanarTwoLinkArm) {
   // Two revolute joints about z, links 1.0 and 0.5 along x: the textbook planar arm.
-  const DhChain arm = chainOf({0, 0, 1.0, 0, 0, 0, 0.5, 0});
+  const KinematicChain arm = chainOf({0, 0, 1.0, 0, 0, 0, 0.5, 0});
   const double q1 = 0.3, q2 = -1.1;
   const Eigen::Isometry3d tip = arm.end({q1, q2});
   const Eigen::Vector3d expected(std::cos(q1) + 0.5 * std::cos(q1 + q2), std::sin(q1) + 0.5 * std::sin(q1 + q2), 0);
@@ -34,12 +34,12 @@ TEST(DhChain, PlanarTwoLinkArm) {
               1e-9);
 }
 
-TEST(DhChain, AnthropomorphicArm) {
+TEST(KinematicChain, AnthropomorphicArm) {
   // Siciliano et al., "Robotics", 2.9.2: three-link anthropomorphic arm, DH rows
   // (d, theta, a, alpha) = (0, q1, 0, pi/2), (0, q2, a2, 0), (0, q3, a3, 0); its tip position is
   // p = (c1 (a2 c2 + a3 c23), s1 (a2 c2 + a3 c23), a2 s2 + a3 s23).
   const double a2 = 0.4, a3 = 0.3;
-  const DhChain arm = chainOf({0, 0, 0, M_PI / 2, 0, 0, a2, 0, 0, 0, a3, 0});
+  const KinematicChain arm = chainOf({0, 0, 0, M_PI / 2, 0, 0, a2, 0, 0, 0, a3, 0});
   const double q1 = 0.7, q2 = -0.4, q3 = 1.2;
   const auto frames = arm.linkFrames({q1, q2, q3});
   ASSERT_EQ(frames.size(), 4u);  // link 0 (the mount) .. link 3
@@ -50,11 +50,11 @@ TEST(DhChain, AnthropomorphicArm) {
   EXPECT_NEAR(frames[1].translation().norm(), 0, 1e-12);
   EXPECT_NEAR((frames[1].linear().col(2) - Eigen::Vector3d(std::sin(q1), -std::cos(q1), 0)).norm(), 0, 1e-12);
   // A theta offset of -q1 in row 1 is the same as joint 1 at 0.
-  const DhChain offset = chainOf({0, -q1, 0, M_PI / 2, 0, 0, a2, 0, 0, 0, a3, 0});
+  const KinematicChain offset = chainOf({0, -q1, 0, M_PI / 2, 0, 0, a2, 0, 0, 0, a3, 0});
   EXPECT_NEAR((offset.end({q1, q2, q3}).translation() - arm.end({0, q2, q3}).translation()).norm(), 0, 1e-12);
 }
 
-TEST(DhChain, PrismaticJointMovesAlongZ) {
+TEST(KinematicChain, PrismaticJointMovesAlongZ) {
   DhJoint slide;
   slide.prismatic = true;
   slide.d = 0.1;
@@ -63,7 +63,7 @@ TEST(DhChain, PrismaticJointMovesAlongZ) {
   EXPECT_TRUE(t.linear().isIdentity(1e-12));
 }
 
-TEST(DhChain, BadTablesAndJointVectorsAreNamed) {
+TEST(KinematicChain, BadTablesAndJointVectorsAreNamed) {
   EXPECT_THROW(parseDhTable({0, 0, 1}), std::invalid_argument);
   EXPECT_THROW(parseDhTable({}), std::invalid_argument);
   try {
@@ -72,7 +72,7 @@ TEST(DhChain, BadTablesAndJointVectorsAreNamed) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("row 2"), std::string::npos) << e.what();
   }
-  const DhChain arm = chainOf({0, 0, 1, 0});
+  const KinematicChain arm = chainOf({0, 0, 1, 0});
   EXPECT_THROW(arm.end({0, 0}), std::invalid_argument);
   try {
     arm.end({std::nan("")});

@@ -33,7 +33,9 @@ TEST(RobotModel, LoadsTheShippedDescription) {
   EXPECT_DOUBLE_EQ(d.marker_size, 0.06);
   EXPECT_NEAR(d.stereo_baseline, 0.12, 1e-12);
   EXPECT_EQ(d.arm.joints[0].name, "arm_joint_1");
-  EXPECT_NEAR(d.arm.joints[0].alpha, -M_PI / 2, 1e-12);
+  // Its DH row as a chain joint: axis z, tip Tz(d) Rx(alpha).
+  EXPECT_TRUE(d.arm.joints[0].axis.isApprox(Eigen::Vector3d::UnitZ()));
+  EXPECT_TRUE(d.arm.joints[0].tip.isApprox(Eigen::Translation3d(0, 0, 0.3) * Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX())));
   EXPECT_NE(d.left_camera_info.find("config/cameras/friend_stereo_left.yaml"), std::string::npos);
 }
 

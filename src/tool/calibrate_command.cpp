@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 
 #include "calibration_client.h"
 #include "command.h"
@@ -13,12 +14,14 @@ namespace tool {
 namespace {
 
 int calibrate(const Args& args) {
-  int redundancy = 5;
+  int redundancy = 5, poses = 0;
   std::string method;
   double timeout = 30;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--redundancy") {
       redundancy = intValue(args, i);
+    } else if (args[i] == "--poses") {
+      poses = intValue(args, i);
     } else if (args[i] == "--method") {
       method = flagValue(args, i);
     } else if (args[i] == "--wait") {
@@ -27,8 +30,9 @@ int calibrate(const Args& args) {
       throw unknownArgument(args[i]);
     }
   }
+  if (poses < 0) throw UsageError("--poses must be >= 0");
   CalibrationClient client("imagenets_calibrate", timeout);
-  const CalibrationRun run = client.calibrate(redundancy, method);
+  const CalibrationRun run = client.calibrate(redundancy, method, poses);
   const auto& r = run.response;
   std::printf("%s: %s\n", r.success ? "calibrated" : "FAILED", r.message.c_str());
   if (!r.success) return 1;
@@ -41,10 +45,15 @@ int calibrate(const Args& args) {
               r.std_dev_translation.x * 1000, r.std_dev_translation.y * 1000, r.std_dev_translation.z * 1000,
               r.std_dev_rotation.x * 180 / M_PI, r.std_dev_rotation.y * 180 / M_PI, r.std_dev_rotation.z * 180 / M_PI,
               r.samples_used, r.samples_rejected);
-  if (r.fixed_point_covariance[0] + r.fixed_point_covariance[7] + r.fixed_point_covariance[14] > 0) {
-    const auto& c = r.fixed_point_covariance;  // row-major 6x6: translation (m), rotation (rad)
-    std::printf("uncertainty of the pixel-level fit (3 sigma = 3 sqrt(trace)): %.3f mm, %.4f deg\n",
-                3000 * std::sqrt(c[0] + c[7] + c[14]), 3 * std::sqrt(c[21] + c[28] + c[35]) * 180 / M_PI);
+  if (run.bound3_mm > 0) {
+    std::printf("uncertainty of the pixel-level fit (3 sigma = 3 sqrt(trace)): %.3f mm, %.4f deg\n", run.bound3_mm,
+                run.bound3_deg);
+  }
+  if (r.condition_number > 0) {
+    std::string names;
+    for (const auto& n : r.unobservable) names += (names.empty() ? "" : ", ") + n;
+    std::printf("observability: condition number %.3g; %s\n", r.condition_number,
+                names.empty() ? "every estimated parameter observable" : ("not observable from these poses: " + names).c_str());
   }
   std::printf("time: %.3f s compute, %.2f s with motion\n", r.compute_time, r.total_time);
   if (run.have_truth) {
@@ -52,6 +61,10 @@ int calibrate(const Args& args) {
     std::printf("error against the effective fixed point (true mount with the pan encoder's zero offset, which no "
                 "calibration of this frame can separate): %.3f mm, %.4f deg\n",
                 run.effective_error_mm, run.effective_error_deg);
+    std::printf("error against the identifiable fixed point (arm joint 1's zero offset folded in as well: a turn of "
+                "the whole arm about its first axis, which no calibration from the arm's marker can tell from a turn "
+                "of the head mount): %.3f mm, %.4f deg\n",
+                run.identifiable_error_mm, run.identifiable_error_deg);
   }
   std::printf("calibration file: %s\n", r.file.c_str());
   return 0;
@@ -59,7 +72,7 @@ int calibrate(const Args& args) {
 
 }  // namespace
 
-IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--method paper|joint] [--wait S]",
+IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--poses N] [--method paper|joint] [--wait S]",
                        "trigger the running friend_calibration node; print the fixed point (and its error in simulation)",
                        calibrate);
 

@@ -1,6 +1,8 @@
 #include "calibration_client.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <mutex>
 #include <stdexcept>
 
@@ -10,6 +12,7 @@
 
 #include "friend_calibration/calibration.h"
 #include "friend_hw_sim/true_robot.h"
+#include "imagenets/SetTrueRobot.h"
 #include "imagenets/vision/frames.h"
 
 namespace imagenets {
@@ -58,20 +61,44 @@ CalibrationClient::~CalibrationClient() {
   if (impl_->spinner) impl_->spinner->stop();
 }
 
+std::string CalibrationClient::setTrueRobot(int seed, double magnitude) {
+  imagenets::SetTrueRobot srv;
+  srv.request.seed = seed;
+  srv.request.magnitude = magnitude;
+  if (!ros::service::waitForService("/friend_sim/set_true_robot", ros::Duration(10)) ||
+      !ros::service::call("/friend_sim/set_true_robot", srv)) {
+    throw std::runtime_error("the call of /friend_sim/set_true_robot failed (is friend_sim_node running?)");
+  }
+  if (!srv.response.success) throw std::runtime_error(srv.response.message);
+  Impl* p = impl_.get();
+  std::lock_guard<std::mutex> l(p->m);
+  p->head_base.reset();  // the next comparison waits for the new truth
+  p->left.reset();
+  p->joints.reset();
+  return srv.response.message;
+}
+
 void CalibrationClient::setSimParam(const std::string& name, double value) { ros::param::set("/friend_sim/" + name, value); }
 
-CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& method) {
+CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& method, int poses) {
   CalibrationRun run;
   imagenets::Calibrate srv;
   srv.request.redundancy = redundancy;
   srv.request.method = method;
+  srv.request.poses = poses;
   const auto start = std::chrono::steady_clock::now();
   if (!ros::service::call("/friend_calibration/calibrate", srv)) {
     throw std::runtime_error("the call of /friend_calibration/calibrate failed (node died?)");
   }
   run.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.response = srv.response;
+  const auto& q = srv.response.fixed_point.transform.rotation;
+  if (q.x == 0 && q.y == 0 && q.z == 0 && q.w == 0) return run;  // a failure before any result: nothing to compare
   run.fixed_point = frames::toIsometry(srv.response.fixed_point.transform, "response fixed_point");
+  const auto& c = srv.response.fixed_point_covariance;  // row-major 6x6: translation (m), rotation (rad)
+  run.bound3_mm = 3000 * std::sqrt(std::max(0.0, c[0] + c[7] + c[14]));
+  run.bound3_deg = 3 * std::sqrt(std::max(0.0, c[21] + c[28] + c[35])) * 180 / M_PI;
+  run.refused = !srv.response.success && srv.response.message.find("~max_uncertainty") != std::string::npos;
   // Ground truth (simulator only): wait briefly for fresh messages.
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(1.0);
   Impl* p = impl_.get();
@@ -90,14 +117,15 @@ CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& m
   // "effective" fixed point (no calibration of this frame can separate the two).
   std::string error_file;
   int seed = -1;
-  run.effective = run.truth;
+  double magnitude = 1.0;
+  run.effective = run.identifiable = run.truth;
   if (ros::param::get("/friend_sim/true_error", error_file)) {
     ros::param::get("/friend_sim/seed", seed);
+    ros::param::get("/friend_sim/magnitude", magnitude);
     try {
-      const auto error = friend_hw_sim::loadTrueError(error_file, seed);
-      if (!error.head_joint_offsets.empty()) {
-        run.effective = run.truth * Eigen::AngleAxisd(error.head_joint_offsets[0], Eigen::Vector3d::UnitZ());
-      }
+      const auto error = friend_hw_sim::loadTrueError(error_file, seed, magnitude);
+      run.effective = friend_hw_sim::effectiveHeadBase(p->nominal->description(), error);
+      run.identifiable = friend_hw_sim::identifiableHeadBase(p->nominal->description(), error);
     } catch (const std::exception&) {
     }
   }
@@ -105,6 +133,8 @@ CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& m
   run.error_deg = friend_calibration::angleBetween(run.fixed_point, run.truth) * 180 / M_PI;
   run.effective_error_mm = (run.fixed_point.translation() - run.effective.translation()).norm() * 1000;
   run.effective_error_deg = friend_calibration::angleBetween(run.fixed_point, run.effective) * 180 / M_PI;
+  run.identifiable_error_mm = (run.fixed_point.translation() - run.identifiable.translation()).norm() * 1000;
+  run.identifiable_error_deg = friend_calibration::angleBetween(run.fixed_point, run.identifiable) * 180 / M_PI;
   return run;
 }
 

@@ -5,18 +5,16 @@
 // launch/repeatability.launch, which starts both and this command).
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "calibration_client.h"
 #include "command.h"
+#include "study_files.h"
 #include "friend_calibration/calibration.h"
 #include "imagenets/vision/frames.h"
 #include <ros/ros.h>
@@ -39,22 +37,6 @@ void setSimTimeScale(double scale) {
   ros::Duration(0.3).sleep();  // the simulator's next ticks pick it up
 }
 
-std::vector<int> parseList(const std::string& s) {
-  std::vector<int> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const long n = std::strtol(item.c_str(), &end, 10);
-    if (item.empty() || *end || n < 1 || n > 999) {
-      throw UsageError("--redundancy '" + s + "': '" + item + "' is not a count 1..999");
-    }
-    out.push_back(static_cast<int>(n));
-  }
-  if (out.empty()) throw UsageError("--redundancy needs a list like 1,3,5");
-  return out;
-}
-
 double stdOf(const std::vector<double>& v) {
   if (v.size() < 2) return 0;
   double m = 0;
@@ -63,16 +45,6 @@ double stdOf(const std::vector<double>& v) {
   double s = 0;
   for (double x : v) s += (x - m) * (x - m);
   return std::sqrt(s / (v.size() - 1));
-}
-
-void writeAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << text;
-    if (!f) throw std::runtime_error("cannot write " + tmp);
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 // Fig. 5.3-style 3D scatter: fixed points relative to the true one (mm), oblique projection,
@@ -129,9 +101,7 @@ void drawScatter(const std::vector<Row>& rows, const std::string& method, const 
                 cv::FONT_HERSHEY_SIMPLEX, 0.55, black, 1, cv::LINE_AA);
     y += 25;
   }
-  const std::string tmp = path + ".tmp.png";
-  if (!cv::imwrite(tmp, img)) throw std::runtime_error("cannot write " + tmp);
-  std::filesystem::rename(tmp, path);
+  writePngAtomically(path, img);
 }
 
 int repeatability(const Args& args) {
@@ -146,7 +116,7 @@ int repeatability(const Args& args) {
     if (args[i] == "--runs") {
       runs = intValue(args, i);
     } else if (args[i] == "--redundancy") {
-      redundancies = parseList(flagValue(args, i));
+      redundancies = parseCounts("--redundancy", flagValue(args, i));
     } else if (args[i] == "--method") {
       const std::string m = flagValue(args, i);
       methods = m == "both" ? std::vector<std::string>{"paper", "joint"} : std::vector<std::string>{m};
@@ -196,17 +166,13 @@ int repeatability(const Args& args) {
                       row.r.error_mm, row.r.error_deg, row.r.effective_error_mm, row.r.effective_error_deg,
                       res.samples_used, res.samples_rejected, res.compute_time, res.total_time,
                       real_speed ? 1.0 : time_scale);
-        std::string msg = res.message;
-        for (char& c : msg) {
-          if (c == '"') c = '\'';
-        }
-        csv << line << '"' << msg << "\"\n";
+        csv << line << csvQuoted(res.message) << "\n";
         rows.push_back(row);
       }
     }
   }
   std::fprintf(stderr, "\n");
-  writeAtomically(out + "/runs.csv", csv.str());
+  writeFileAtomically(out + "/runs.csv", csv.str());
 
   std::ostringstream table;
   char buf[1024];
@@ -283,7 +249,7 @@ int repeatability(const Args& args) {
   table << "\nPaper (5 loops, real FRIEND): std 0.88 / 0.58 / 2.10 mm, 0.12 / 0.11 / 0.73 deg.\n"
            "'effective' = the true mount with the pan encoder's zero offset folded in (indistinguishable from the "
            "mount's yaw for any calibration of this frame).\n";
-  writeAtomically(out + "/table.md", table.str());
+  writeFileAtomically(out + "/table.md", table.str());
   std::cout << table.str();
   for (const auto& method : methods) drawScatter(rows, method, out + "/scatter_" + method + ".png");
   std::cout << "written: " << out << "/runs.csv, " << out << "/table.md, " << out << "/scatter_*.png\n";

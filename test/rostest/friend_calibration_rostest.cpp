@@ -7,16 +7,22 @@
 #include <fstream>
 #include <sstream>
 
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <actionlib/client/simple_action_client.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2_ros/buffer.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/transform_listener.h>
 
 #include "friend_hw_sim/true_robot.h"
 #include "friend_calibration/calibration.h"
+#include "friend_calibration/storage.h"
 #include "imagenets/Calibrate.h"
 #include "imagenets/CalibrateAction.h"
 #include "imagenets/vision/frames.h"
@@ -113,6 +119,10 @@ TEST_F(FriendCalibration, RecoversTheTrueFixedPointAndPublishesIt) {
   std::printf("reported uncertainty (3 sigma): %.3f mm / %.4f deg\n", bound_mm, bound_deg);
   EXPECT_GT(bound_mm, 0.0);
   EXPECT_LT(bound_mm, 2.0);
+  // The default plan's poses determine every estimated parameter.
+  EXPECT_TRUE(res.unobservable.empty()) << res.message;
+  EXPECT_GT(res.condition_number, 1.0);
+  EXPECT_TRUE(std::isfinite(res.condition_number));
   // Published on tf2: base_link -> pth_fixed_point equals the response.
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
@@ -122,6 +132,89 @@ TEST_F(FriendCalibration, RecoversTheTrueFixedPointAndPublishesIt) {
   EXPECT_NEAR(tf.transform.translation.z, res.fixed_point.transform.translation.z, 1e-9);
   // The calibrated camera frame hangs from it (paper 4.3).
   EXPECT_NO_THROW(buffer.lookupTransform("base_link", "calibrated/stereo_left_optical_frame", ros::Time(0), ros::Duration(5)));
+}
+
+// A child process (here Debian's robot_state_publisher), stopped with SIGINT when it goes.
+class ChildProcess {
+ public:
+  explicit ChildProcess(std::vector<std::string> args) {
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    if (posix_spawnp(&pid_, argv[0], nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
+  }
+  ~ChildProcess() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGINT);
+    waitpid(pid_, nullptr, 0);
+  }
+  bool started() const { return pid_ > 0; }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+// Like Fetch's robot_calibration, the node writes a calibrated URDF beside the calibration file:
+// Debian's robot_state_publisher, started on it as it is, must give the calibrated frames: the
+// head mount (base_link -> head_link_0) at the fixed point, and at given joint states the frames
+// of the calibrated model (joint zero offsets and marker offset included).
+TEST_F(FriendCalibration, CalibratedUrdfGivesTheCalibratedFramesInRobotStatePublisher) {
+  const auto res = call(3);
+  ASSERT_TRUE(res.success) << res.message;
+  ASSERT_FALSE(res.urdf_file.empty()) << res.message;
+  EXPECT_NE(res.message.find("calibrated URDF " + res.urdf_file), std::string::npos) << res.message;
+  const friend_calibration::StoredCalibration stored = friend_calibration::loadCalibration(res.file);
+  const friend_calibration::RobotModel calibrated = friend_calibration::calibratedModel(
+      friend_calibration::RobotModel(robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath())),
+      stored.result);
+  ASSERT_FALSE(stored.result.head_joint_offsets.empty()) << "the joint method estimates the tilt's zero offset";
+
+  // Its own namespace and TF topics, beside the simulator's robot_state_publisher (true robot).
+  const std::string ns = "/calibrated_urdf";
+  ros::param::set(ns + "/robot_description", readFile(res.urdf_file));
+  tf2::BufferCore buffer;
+  ros::NodeHandle nh;
+  auto add = [&buffer](bool is_static) {
+    return [&buffer, is_static](const tf2_msgs::TFMessageConstPtr& m) {
+      for (const auto& t : m->transforms) buffer.setTransform(t, "calibrated_urdf", is_static);
+    };
+  };
+  ros::Subscriber tf_sub = nh.subscribe<tf2_msgs::TFMessage>(ns + "/tf", 100, add(false));
+  ros::Subscriber static_sub = nh.subscribe<tf2_msgs::TFMessage>(ns + "/tf_static", 10, add(true));
+  ros::Publisher joints = nh.advertise<sensor_msgs::JointState>(ns + "/joint_states", 10);
+  ChildProcess publisher({"rosrun", "robot_state_publisher", "robot_state_publisher", "__ns:=" + ns,
+                          "__name:=calibrated_state_publisher", "/tf:=" + ns + "/tf", "/tf_static:=" + ns + "/tf_static"});
+  ASSERT_TRUE(publisher.started());
+
+  auto expectNear = [&](const std::string& child, const Eigen::Isometry3d& expected) {
+    const Eigen::Isometry3d seen = toEigen(buffer.lookupTransform("base_link", child, ros::Time(0)).transform);
+    EXPECT_LT((seen.translation() - expected.translation()).norm(), 1e-6) << child;
+    EXPECT_LT(friend_calibration::angleBetween(seen, expected), 1e-6) << child;
+  };
+  ASSERT_TRUE(waitFor([&] { return buffer.canTransform("base_link", "head_link_0", ros::Time(0)); }, 60))
+      << "robot_state_publisher published no base_link -> head_link_0 from " << res.urdf_file;
+  expectNear("head_link_0", toEigen(res.fixed_point.transform));
+
+  // Joint states (as the encoders read them): every frame of the arm and the head follows.
+  const auto& d = calibrated.description();
+  sensor_msgs::JointState js;
+  js.name = d.arm.names();
+  for (const auto& n : d.head.names()) js.name.push_back(n);
+  std::vector<double> arm = d.arm_calibration_pose, head = {0.2, 0.4};
+  for (size_t i = 0; i < arm.size(); ++i) arm[i] += 0.05 * (i + 1);
+  js.position = arm;
+  js.position.insert(js.position.end(), head.begin(), head.end());
+  ASSERT_TRUE(waitFor(
+      [&] {
+        js.header.stamp = ros::Time::now();
+        joints.publish(js);
+        return buffer.canTransform("base_link", d.left_camera.frame, ros::Time(0)) &&
+               buffer.canTransform("base_link", d.marker.frame, ros::Time(0));
+      },
+      60))
+      << "robot_state_publisher published no moving joints";
+  expectNear(d.left_camera.frame, calibrated.leftCamera(head));
+  expectNear(d.marker.frame, calibrated.marker(arm));
 }
 
 TEST_F(FriendCalibration, ReplayOfStoredSamplesReproducesTheResult) {
@@ -219,6 +312,32 @@ TEST_F(FriendCalibration, ConcurrentTriggerIsRejectedAndCancelKeepsTheFile) {
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED) << client.getState().getText();
   EXPECT_NE(client.getResult()->message.find("cancelled"), std::string::npos) << client.getResult()->message;
   EXPECT_EQ(readFile(file_), before);
+}
+
+TEST_F(FriendCalibration, ThePosesFieldOfTheGoalTakesThatManySamples) {
+  int feedback_of = 0;
+  imagenets::CallingThreadQueue clients;
+  actionlib::SimpleActionClient<imagenets::CalibrateAction> client(clients.nodeHandle(),
+                                                                   "/friend_calibration/calibrate_action", false);
+  ASSERT_TRUE(clients.waitUntil([&client] { return client.isServerConnected(); }, 10));
+  imagenets::CalibrateGoal goal;
+  goal.poses = 3;  // redundancy 0: the node's default (5 loops) would be 10
+  client.sendGoal(goal, {}, {}, [&](const imagenets::CalibrateFeedbackConstPtr& f) { feedback_of = f->samples; });
+  ASSERT_TRUE(clients.waitUntil([&client] { return client.getState().isDone(); }, 180));
+  const auto res = client.getResult();
+  ASSERT_TRUE(res);
+  EXPECT_EQ(feedback_of, 3);
+  EXPECT_EQ(res->samples_used + res->samples_rejected, 3) << res->message;
+  EXPECT_EQ(res->residual_translation.size(), 3u) << res->message;
+  // Whether or not the node keeps it (~max_uncertainty), the result says what its poses determined.
+  EXPECT_GT(res->condition_number, 0.0) << res->message;
+  EXPECT_NE(res->message.find("condition number"), std::string::npos) << res->message;
+  // A negative count is named.
+  imagenets::Calibrate srv;
+  srv.request.poses = -2;
+  ASSERT_TRUE(ros::service::call("/friend_calibration/calibrate", srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("request field 'poses' is -2"), std::string::npos) << srv.response.message;
 }
 
 TEST(FriendCalibrationNet, ABadNetIsNamedAndTheNodeKeepsServing) {

@@ -37,9 +37,14 @@ cv::Mat toMat(const sensor_msgs::Image& img) {
 
 class FriendSimCameras : public ::testing::Test {
  protected:
+  // The robot the simulator runs (~description, as friend_sim.launch's `description`; FRIEND's by
+  // default): friend_sim_six_axis.test runs these tests on a robot that exists only as a URDF.
+  static std::string descriptionPath() {
+    return ros::NodeHandle("~").param<std::string>("description", robot_description::defaultRobotDescriptionPath());
+  }
   static void SetUpTestSuite() {
     // Calibration pose of the description: the marker faces the stereo camera.
-    const auto d = robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath());
+    const auto d = robot_description::loadRobotDescription(descriptionPath());
     imagenets::CallingThreadQueue clients;  // called back only in its waitUntil (it says why)
     Client arm(clients.nodeHandle(), "arm/move_joints", false), head(clients.nodeHandle(), "head/move_joints", false);
     ASSERT_TRUE(clients.waitUntil([&] { return arm.isServerConnected() && head.isServerConnected(); }, 15));
@@ -138,8 +143,7 @@ TEST_F(FriendSimCameras, GroundTruthAgreesWithTheTrueRobotTf) {
     EXPECT_LT(Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle(), 1e-6) << gt->child_frame_id;
   }
   // And the truth is not the nominal robot: the head is mounted off by about 15 mm.
-  const auto nominal = robot_description::RobotModel(
-      robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
+  const auto nominal = robot_description::RobotModel(robot_description::loadRobotDescription(descriptionPath()));
   const auto tf = buffer.lookupTransform("base_link", "head_link_0", ros::Time(0));
   EXPECT_NEAR((toEigen(tf).translation() - nominal.headBase().translation()).norm(), 0.015, 0.002);
 }

@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "friend_calibration/calibration.h"
+#include "friend_calibration/observability.h"
 
 namespace friend_calibration {
 
@@ -42,6 +43,8 @@ struct BundleAdjustmentOptions {
   // model) was made with another camera model or carries no real points: it is not used.
   double max_point_mismatch = 1.0;
   int max_iterations = 100;
+  // px: the point noise; 0 = estimated from the residuals (a robust sigma).
+  double noise_sigma = 0.0;
 };
 
 struct BundleAdjustment {
@@ -63,6 +66,9 @@ struct BundleAdjustment {
   double noise_sigma = 0.0;      // px, robust estimate of the point noise from the residuals
   double reprojection_rms = 0.0; // px, over the used points
   int observations = 0;          // detections used (left and right count separately)
+  // Which parameters these detections determine, and the posterior covariance of all of them
+  // (parameter order: fixed point, marker offset, arm offsets, head offsets as estimated).
+  Observability observability;
 };
 
 // Starts from `start` (the joint method's solution: fixed point, marker offset, joint offsets) and
@@ -72,5 +78,11 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
                               const std::vector<Eigen::Vector3d>& marker_points, const std::vector<const Sample*>& samples,
                               const Result& start, double max_reprojection_error,
                               const BundleAdjustmentOptions& options = {});
+
+// What a plan of poses will determine before the robot moves: the bundle adjustment's
+// observability at the nominal robot, each pose seen as the nominal geometry projects it (views
+// where the marker leaves an image or turns its back do not count), with point noise `noise_px`.
+Observability predictObservability(const RobotModel& model, const StereoCameras& cameras,
+                                   const std::vector<CalibrationPose>& poses, double noise_px);
 
 }  // namespace friend_calibration

@@ -146,6 +146,12 @@ struct Result {
   Eigen::Matrix<double, 6, 6> marker_offset_covariance = Eigen::Matrix<double, 6, 6>::Zero();
   std::vector<double> arm_joint_offset_std, head_joint_offset_std;
   double reprojection_rms = 0.0;  // px, the pixel-level fit's residual (0 = not fitted)
+  // Observability at the solution (observability.h; computed with the covariance): the estimated
+  // parameters the poses do not determine (posterior std > 0.5 x prior std; empty = all
+  // determined), and the condition number of the Jacobian in units of the prior std (0 = not
+  // computed, inf = a direction not observed at all).
+  std::vector<std::string> unobservable;
+  double condition_number = 0.0;
   // One number each for the fixed point: sqrt(trace) of the translation / rotation block (m, rad);
   // the true error lies within 3 of it with high probability.
   double sigmaTranslation() const { return std::sqrt(fixed_point_covariance.topLeftCorner<3, 3>().trace()); }
@@ -176,6 +182,10 @@ Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std
 
 // The model with joint zero offsets added to its DH theta offsets (empty vectors: unchanged).
 RobotModel withJointOffsets(const RobotModel& model, const std::vector<double>& arm, const std::vector<double>& head);
+// The nominal model with a calibration applied: the head's mount replaced by the fixed point, the
+// marker offset by the estimated one, the estimated joint zero offsets added (the calibrated URDF
+// is generated from it, storage.h).
+RobotModel calibratedModel(const RobotModel& nominal, const Result& result);
 
 // Rotation angle between two frames (rad) and the distance between their origins (m).
 double angleBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);

@@ -21,7 +21,8 @@
 // Parameters (private): net (the calibration net file), replay_net (the sample net of replays),
 //   description, marker, calibration_file, redundancy (5), method (joint), poses_per_loop (joint
 //   method, 2), fusion/max_position_difference (m), fusion/max_angle_difference (rad),
-//   min_valid_fraction, max_uncertainty (m, 3-sigma translation bound above which a calibration
+//   min_valid_fraction, urdf_file (the calibrated URDF written after each saved calibration;
+//   default beside calibration_file, .urdf), max_uncertainty (m, 3-sigma translation bound above which a calibration
 //   does not replace a good saved one; 0.002, 0 = off), replay (file re-solved at start-up),
 //   joint_states. The acquisition's
 //   settings (speed, timeouts, settling, camera namespace) are properties of the sample net's
@@ -88,6 +89,7 @@ class CalibrationNode {
   RobotModel model_;
   imagenets::marker::MarkerDescription marker_;
   std::string calibration_file_, child_frame_ = "pth_fixed_point";
+  std::string urdf_file_;  // the calibrated URDF written beside the calibration (storage.h)
   int default_redundancy_ = 5;
   std::string default_method_ = "joint";
   int poses_per_loop_ = 2;

@@ -10,7 +10,9 @@
 //   ~ground_truth/{tcp,marker,left_camera,right_camera,head_base,hand_camera}
 //                                         geometry_msgs/TransformStamped (base -> frame, true robot)
 //   ~ground_truth/joint_states            exact joint angles (no encoder noise)
-// Parameters (private): description, true_error, seed, time_scale (live), joint_state_rate,
+//   ~set_true_robot                       imagenets/SetTrueRobot: another true robot, live (studies)
+// Parameters (private): description, true_error, seed, magnitude (factor on the random error's
+//   magnitudes; ~seed and ~magnitude are rewritten by ~set_true_robot), time_scale (live), joint_state_rate,
 //   encoder_noise (rad), faults/arm_abort_probability, faults/head_abort_probability,
 //   ft_sensor/{payload_mass, payload_com, force_noise, torque_noise}; camera ones in cameras.h.
 #pragma once
@@ -26,6 +28,7 @@
 
 #include "friend_hw_sim/joint_group_server.h"
 #include "robot_description/robot_model.h"
+#include "imagenets/SetTrueRobot.h"
 #include "imagenets/WorldModelGet.h"
 #include "imagenets/WorldModelSet.h"
 
@@ -47,22 +50,28 @@ class FriendSim {
 
   RobotState state() const;
   const robot_description::RobotModel& nominal() const { return nominal_; }
-  const robot_description::RobotModel& truth() const { return truth_; }
+  // The true robot now (~set_true_robot may replace it at any time: keep the pointer for one
+  // consistent view, e.g. one rendered frame).
+  std::shared_ptr<const robot_description::RobotModel> truth() const;
 
  private:
   void tick(const ros::TimerEvent& e);
   bool setObject(imagenets::WorldModelSet::Request& req, imagenets::WorldModelSet::Response& res);
   bool getObject(imagenets::WorldModelGet::Request& req, imagenets::WorldModelGet::Response& res);
+  bool setTrueRobot(imagenets::SetTrueRobot::Request& req, imagenets::SetTrueRobot::Response& res);
   void publishGroundTruth(const RobotState& s);
   void publishWrench(const RobotState& s);
 
   ros::NodeHandle nh_, pnh_;
-  robot_description::RobotModel nominal_, truth_;
+  robot_description::RobotModel nominal_;
+  std::string true_error_file_;
+  mutable std::mutex truth_mutex_;
+  std::shared_ptr<const robot_description::RobotModel> truth_;
   double time_scale_ = 1.0;  // ~time_scale, read live (timer thread only)
   std::unique_ptr<JointGroupServer> arm_, head_;
   ros::Publisher joint_states_, truth_joint_states_, wrench_;
   std::map<std::string, ros::Publisher> truth_frames_;
-  ros::ServiceServer set_object_, get_object_;
+  ros::ServiceServer set_object_, get_object_, set_true_robot_;
   ros::Timer timer_;
   ros::Time last_tick_;
   mutable std::mutex mutex_;

@@ -27,7 +27,7 @@ class JointGroupServer {
 
   // `action_name` is resolved in nh; `fault_param` is a parameter (read live) holding the
   // probability in [0, 1] that an accepted goal is aborted part way.
-  JointGroupServer(ros::NodeHandle nh, const std::string& action_name, const robot_description::DhChain& chain,
+  JointGroupServer(ros::NodeHandle nh, const std::string& action_name, const robot_description::KinematicChain& chain,
                    const std::vector<double>& start, std::string fault_param, unsigned seed);
   ~JointGroupServer();
 
@@ -45,7 +45,7 @@ class JointGroupServer {
 
   ros::NodeHandle nh_;
   std::string action_name_;
-  robot_description::DhChain chain_;
+  robot_description::KinematicChain chain_;
   std::string fault_param_;
   mutable std::mutex mutex_;
   std::vector<double> q_, qd_;

@@ -21,16 +21,26 @@ struct TrueRobotError {
   Eigen::Vector3d head_mount_rpy = Eigen::Vector3d::Zero();  // rad, rotation applied after the mount
   Eigen::Vector3d marker_xyz = Eigen::Vector3d::Zero();
   Eigen::Vector3d marker_rpy = Eigen::Vector3d::Zero();
-  std::vector<double> arm_joint_offsets, head_joint_offsets;  // rad, added to theta_offset
+  std::vector<double> arm_joint_offsets, head_joint_offsets;  // rad, added to the joints' offsets
 };
 
 // Reads `true_error` settings (see config/friend/true_error.yaml). With `seed` > 0 the error is
 // drawn at random with the given magnitudes (repeatable per seed); with seed 0 the explicit values
-// are used. Throws naming the key on bad input.
-TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override = -1);
-TrueRobotError loadTrueError(const std::string& path, int seed_override = -1);
+// are used. `magnitude` scales the `random` magnitudes (a study over robots K times as far off as
+// the file's; ignored for explicit values). Throws naming the key (or the magnitude) on bad input.
+TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override = -1,
+                                 double magnitude = 1.0);
+TrueRobotError loadTrueError(const std::string& path, int seed_override = -1, double magnitude = 1.0);
 // The description of the true robot.
 robot_description::RobotDescription applyTrueError(const robot_description::RobotDescription& nominal,
                                                    const TrueRobotError& error);
+
+// What a calibration of the head's fixed point (base -> head link 0) from the arm's marker can find
+// at best, for comparing with it. Effective: the true mount with the pan encoder's zero offset
+// folded in (it turns the whole head about the mount's z). Identifiable: the effective mount with
+// arm joint 1's zero offset folded in as well (it turns the whole arm about joint 1's axis, which
+// the images cannot tell from the head mount turning the other way about that axis).
+Eigen::Isometry3d effectiveHeadBase(const robot_description::RobotDescription& nominal, const TrueRobotError& error);
+Eigen::Isometry3d identifiableHeadBase(const robot_description::RobotDescription& nominal, const TrueRobotError& error);
 
 }  // namespace friend_hw_sim

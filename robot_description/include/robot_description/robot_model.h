@@ -1,10 +1,12 @@
 // A robot's geometry, read once from its description file (config/friend/robot.yaml for FRIEND):
 // classic DH chains for the arm and the pan-tilt head, fixed mounts, the gripper marker, the
 // cameras; with forward kinematics. The one kinematics library: the simulator, the URDF
-// generator, the blocks and the calibration all compute with it. Small (Eigen + yaml-cpp).
+// generator, the blocks and the calibration all compute with it. Small (Eigen + yaml-cpp); the
+// same chains read from a URDF are in urdf_kinematics.h (KDL, kept out of this header).
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -12,7 +14,67 @@
 
 namespace robot_description {
 
-// One joint in the classic (distal, Denavit-Hartenberg 1955) convention:
+// One joint of a kinematic chain, the one form that DH rows and URDF joints both map onto:
+//   T(link i-1 -> link i) = origin * Motion(axis, q + offset) * tip,
+// Motion a rotation about `axis` by that angle (revolute) or a translation along it (prismatic).
+// A classic DH row (fromDh): revolute: origin identity, axis z, offset theta_offset, tip
+// Tz(d) Tx(a) Rx(alpha); prismatic: origin Rz(theta_offset), axis z, offset d, tip Tx(a) Rx(alpha).
+// A URDF joint (urdf_kinematics.h): origin and axis as written, tip the fixed joints up to the next
+// moving one. Estimated zero offsets (calibration, true-robot error) add to `offset`.
+struct ChainJoint {
+  std::string name;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity(), tip = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit, in the frame after `origin`
+  bool prismatic = false;
+  double offset = 0;                                  // rad (m)
+  double min = 0, max = 0, max_velocity = 0;          // rad (m), rad (m), rad/s (m/s)
+};
+
+// The forward kinematics of one joint at position q (its offset is added here): the one
+// implementation, templated so that the calibration's bundle adjustment differentiates it with
+// Ceres' dual numbers (T = double everywhere else). The constant parts stay double.
+template <typename T>
+Eigen::Matrix<T, 4, 4> jointMatrix(const ChainJoint& j, const T& q) {
+  using std::cos;
+  using std::sin;
+  const T v = q + j.offset;
+  const Eigen::Vector3d& a = j.axis;
+  Eigen::Matrix<T, 3, 3> r;  // the motion: rotation r, translation p
+  Eigen::Matrix<T, 3, 1> p;
+  if (j.prismatic) {
+    r.setIdentity();
+    for (int i = 0; i < 3; ++i) p(i) = a(i) * v;
+  } else {
+    const T c = cos(v), s = sin(v), k = T(1) - c;  // Rodrigues: c I + s [a]x + (1 - c) a a^T
+    r(0, 0) = c + k * (a.x() * a.x());
+    r(0, 1) = k * (a.x() * a.y()) - s * a.z();
+    r(0, 2) = k * (a.x() * a.z()) + s * a.y();
+    r(1, 0) = k * (a.y() * a.x()) + s * a.z();
+    r(1, 1) = c + k * (a.y() * a.y());
+    r(1, 2) = k * (a.y() * a.z()) - s * a.x();
+    r(2, 0) = k * (a.z() * a.x()) - s * a.y();
+    r(2, 1) = k * (a.z() * a.y()) + s * a.x();
+    r(2, 2) = c + k * (a.z() * a.z());
+    p.setZero();
+  }
+  const Eigen::Matrix3d ro = j.origin.linear(), rt = j.tip.linear();
+  const Eigen::Vector3d to = j.origin.translation(), tt = j.tip.translation();
+  Eigen::Matrix<T, 3, 3> ar;  // origin * motion
+  Eigen::Matrix<T, 3, 1> at;
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) ar(i, k) = ro(i, 0) * r(0, k) + ro(i, 1) * r(1, k) + ro(i, 2) * r(2, k);
+    at(i) = ro(i, 0) * p(0) + ro(i, 1) * p(1) + ro(i, 2) * p(2) + to(i);
+  }
+  Eigen::Matrix<T, 4, 4> m = Eigen::Matrix<T, 4, 4>::Identity();  // ... * tip
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) m(i, k) = ar(i, 0) * rt(0, k) + ar(i, 1) * rt(1, k) + ar(i, 2) * rt(2, k);
+    m(i, 3) = ar(i, 0) * tt(0) + ar(i, 1) * tt(1) + ar(i, 2) * tt(2) + at(i);
+  }
+  return m;
+}
+
+// One joint in the classic (distal, Denavit-Hartenberg 1955) convention, as description files
+// write it:
 //   T(i-1 -> i) = Rz(theta) Tz(d) Tx(a) Rx(alpha),
 // theta = q + theta_offset for a revolute joint, d = q + d for a prismatic one. Metres, radians.
 struct DhJoint {
@@ -22,20 +84,23 @@ struct DhJoint {
   double min = 0, max = 0, max_velocity = 0;          // rad (m), rad (m), rad/s (m/s)
 };
 
+// The DH row as a chain joint (see ChainJoint).
+ChainJoint fromDh(const DhJoint& joint);
 Eigen::Isometry3d dhTransform(const DhJoint& joint, double q);
 // A DH table written as a flat list, 4 values per revolute joint in the textbook column order
 // [d, theta offset, a, alpha, ...] (joints named joint_1..n, no limits). Throws
 // std::invalid_argument if the size is not a positive multiple of 4 or a value is not finite.
-std::vector<DhJoint> parseDhTable(const std::vector<double>& flat);
+std::vector<ChainJoint> parseDhTable(const std::vector<double>& flat);
 // URDF meaning: Translation(xyz) * Rz(yaw) * Ry(pitch) * Rx(roll).
 Eigen::Isometry3d fromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
 // Inverse of the rotation part of fromXyzRpy (well defined at pitch = +-90 deg too).
 Eigen::Vector3d rpyOf(const Eigen::Matrix3d& r);
 
-struct DhChain {
+// A serial chain hanging from the base: mount, then one ChainJoint per moving joint.
+struct KinematicChain {
   std::string link_prefix;        // link i is link_prefix + i; link 0 is the mount's child
   Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // base -> link 0
-  std::vector<DhJoint> joints;
+  std::vector<ChainJoint> joints;
   std::vector<std::string> names() const;
   // Frames of links 0..n in the base frame (n + 1 entries). Throws std::invalid_argument if q has
   // the wrong size or a value is not finite.
@@ -53,7 +118,7 @@ struct FixedFrame {
 struct RobotDescription {
   std::string source;  // file it was loaded from (for messages)
   std::string base_frame = "base_link";
-  DhChain arm, head;
+  KinematicChain arm, head;
   FixedFrame tool;         // arm last link -> TCP
   FixedFrame marker;       // TCP -> marker centre (z out of the face)
   double marker_size = 0.06;

@@ -9,9 +9,13 @@
 
 namespace robot_description {
 
-// Joint i of a chain becomes a revolute joint from link i-1 to an intermediate "<joint>_rotor"
-// link (origin Rz(theta_offset), axis z), then a fixed joint Tz(d) Tx(a) Rx(alpha) to link i, so
-// TF of link i equals the DH frame i exactly.
-std::string generateUrdf(const RobotDescription& description, const std::string& robot_name = "friend");
+// Joint i of a chain (ChainJoint) becomes a revolute (prismatic) joint from link i-1 to an
+// intermediate "<joint>_rotor" link (origin: the joint's origin with its zero offset turned in,
+// e.g. Rz(theta_offset) for a DH row; its axis), then a fixed joint (the joint's tip, e.g.
+// Tz(d) Tx(a) Rx(alpha)) to link i, so TF of link i equals the chain's frame i exactly.
+// `note`: lines put in a comment at the top (e.g. what a calibration changed); "--" is not allowed
+// in an XML comment and is written as "- -".
+std::string generateUrdf(const RobotDescription& description, const std::string& robot_name = "friend",
+                         const std::string& note = "");
 
 }  // namespace robot_description
