@@ -27,12 +27,9 @@ int main() {
   const RobotModel model(nominal_desc);
   const auto error = friend_hw_sim::loadTrueError(root + "config/friend/true_error.yaml");
   const RobotModel truth(friend_hw_sim::applyTrueError(nominal_desc, error));
-  const Eigen::Isometry3d effective = truth.headBase() * Eigen::AngleAxisd(error.head_joint_offsets[0], Eigen::Vector3d::UnitZ());
-  // What images can determine at all: the first arm joint's zero offset turns the whole arm about
-  // its base axis, which the fixed point absorbs too (calibration.h): folded in as well.
-  const Eigen::Isometry3d arm_base = nominal_desc.arm.mount;
-  const Eigen::Isometry3d identifiable =
-      arm_base * Eigen::AngleAxisd(-error.arm_joint_offsets[0], Eigen::Vector3d::UnitZ()) * arm_base.inverse() * effective;
+  const Eigen::Isometry3d effective = friend_hw_sim::effectiveHeadBase(nominal_desc, error);
+  // What images can determine at all: arm joint 1's zero offset folded in as well.
+  const Eigen::Isometry3d identifiable = friend_hw_sim::identifiableHeadBase(nominal_desc, error);
 
   const CalibrationViews views = renderCalibrationViews();
   const auto poses = calibrationPoses(model, 10, "joint");

@@ -94,4 +94,37 @@ RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobot
   return t;
 }
 
+namespace {
+
+// A zero offset `delta` of a chain's first joint, seen from the base: the motion of that joint by
+// delta about (along) its axis, in the joint's frame at the mount.
+Eigen::Isometry3d firstJointOffsetMotion(const robot_description::KinematicChain& chain, double delta) {
+  const auto& j = chain.joints.front();
+  const Eigen::Isometry3d pivot = chain.mount * j.origin;
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  if (j.prismatic) {
+    motion.translation() = j.axis * delta;
+  } else {
+    motion.linear() = Eigen::AngleAxisd(delta, j.axis.normalized()).toRotationMatrix();
+  }
+  return pivot * motion * pivot.inverse();
+}
+
+}  // namespace
+
+Eigen::Isometry3d effectiveHeadBase(const RobotDescription& nominal, const TrueRobotError& error) {
+  const RobotDescription truth = applyTrueError(nominal, error);
+  if (error.head_joint_offsets.empty() || truth.head.joints.empty()) return truth.head.mount;
+  // The pan offset turns everything after the mount: folded into it.
+  return firstJointOffsetMotion(truth.head, error.head_joint_offsets[0]) * truth.head.mount;
+}
+
+Eigen::Isometry3d identifiableHeadBase(const RobotDescription& nominal, const TrueRobotError& error) {
+  const Eigen::Isometry3d effective = effectiveHeadBase(nominal, error);
+  if (error.arm_joint_offsets.empty() || nominal.arm.joints.empty()) return effective;
+  // The true arm stands at encoder angle + offset: the nominal model puts the marker moved back by
+  // the offset about joint 1's axis, and a fit of the head follows it.
+  return firstJointOffsetMotion(nominal.arm, -error.arm_joint_offsets[0]) * effective;
+}
+
 }  // namespace friend_hw_sim

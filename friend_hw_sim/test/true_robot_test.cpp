@@ -59,6 +59,30 @@ TEST(TrueRobot, MagnitudeScalesTheRandomErrorAndMustBePositive) {
   }
 }
 
+TEST(TrueRobot, IdentifiableHeadBaseSeesTheArmAsTheNominalModelDoes) {
+  // Arm joint 1 and pan zero offsets only: seen from the identifiable head mount, the NOMINAL
+  // model's marker sits where the TRUE marker sits seen from the effective (pan-folded) mount, in
+  // every arm pose; so no image of the marker can tell the two apart.
+  const auto nominal = loadRobotDescription("config/friend/robot.yaml");
+  TrueRobotError e;
+  e.arm_joint_offsets = {0.3 * kDeg, 0, 0, 0, 0, 0, 0};
+  e.head_joint_offsets = {0.2 * kDeg, 0};
+  const RobotModel n(nominal), t(applyTrueError(nominal, e));
+  const Eigen::Isometry3d effective = effectiveHeadBase(nominal, e), identifiable = identifiableHeadBase(nominal, e);
+  EXPECT_NEAR(angleBetween(effective.linear(), t.headBase().linear()), 0.2 * kDeg, 1e-12);
+  EXPECT_NEAR(angleBetween(identifiable.linear(), effective.linear()), 0.3 * kDeg, 1e-12);
+  for (auto q : {nominal.arm_calibration_pose, nominal.arm_home}) {
+    q[1] += 0.2;
+    const Eigen::Isometry3d seen_nominal = identifiable.inverse() * n.marker(q);
+    const Eigen::Isometry3d seen_true = effective.inverse() * t.marker(q);
+    EXPECT_LT((seen_nominal.translation() - seen_true.translation()).norm(), 1e-12);
+    EXPECT_LT(angleBetween(seen_nominal.linear(), seen_true.linear()), 1e-12);
+  }
+  // Without offsets all three are the true mount.
+  const TrueRobotError none;
+  EXPECT_TRUE(identifiableHeadBase(nominal, none).isApprox(nominal.head.mount));
+}
+
 TEST(JointTrajectory, RespectsVelocityLimitsAndEndsAtTheGoal) {
   const std::vector<double> start{0.0, 1.0}, goal{1.0, 0.5}, vmax{0.5, 2.0};
   const JointTrajectory t(start, goal, vmax, 0.5);

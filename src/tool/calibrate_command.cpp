@@ -51,6 +51,10 @@ int calibrate(const Args& args) {
     std::printf("error against the effective fixed point (true mount with the pan encoder's zero offset, which no "
                 "calibration of this frame can separate): %.3f mm, %.4f deg\n",
                 run.effective_error_mm, run.effective_error_deg);
+    std::printf("error against the identifiable fixed point (arm joint 1's zero offset folded in as well: a turn of "
+                "the whole arm about its first axis, which no calibration from the arm's marker can tell from a turn "
+                "of the head mount): %.3f mm, %.4f deg\n",
+                run.identifiable_error_mm, run.identifiable_error_deg);
   }
   std::printf("calibration file: %s\n", r.file.c_str());
   return 0;

@@ -117,15 +117,14 @@ CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& m
   std::string error_file;
   int seed = -1;
   double magnitude = 1.0;
-  run.effective = run.truth;
+  run.effective = run.identifiable = run.truth;
   if (ros::param::get("/friend_sim/true_error", error_file)) {
     ros::param::get("/friend_sim/seed", seed);
     ros::param::get("/friend_sim/magnitude", magnitude);
     try {
       const auto error = friend_hw_sim::loadTrueError(error_file, seed, magnitude);
-      if (!error.head_joint_offsets.empty()) {
-        run.effective = run.truth * Eigen::AngleAxisd(error.head_joint_offsets[0], Eigen::Vector3d::UnitZ());
-      }
+      run.effective = friend_hw_sim::effectiveHeadBase(p->nominal->description(), error);
+      run.identifiable = friend_hw_sim::identifiableHeadBase(p->nominal->description(), error);
     } catch (const std::exception&) {
     }
   }
@@ -133,6 +132,8 @@ CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& m
   run.error_deg = friend_calibration::angleBetween(run.fixed_point, run.truth) * 180 / M_PI;
   run.effective_error_mm = (run.fixed_point.translation() - run.effective.translation()).norm() * 1000;
   run.effective_error_deg = friend_calibration::angleBetween(run.fixed_point, run.effective) * 180 / M_PI;
+  run.identifiable_error_mm = (run.fixed_point.translation() - run.identifiable.translation()).norm() * 1000;
+  run.identifiable_error_deg = friend_calibration::angleBetween(run.fixed_point, run.identifiable) * 180 / M_PI;
   return run;
 }
 

@@ -18,7 +18,11 @@ struct CalibrationRun {
   Eigen::Isometry3d fixed_point = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();      // simulator's true head mount
   Eigen::Isometry3d effective = Eigen::Isometry3d::Identity();  // true mount with the pan zero offset
+  // The effective mount with arm joint 1's zero offset folded in too: what images can determine
+  // (friend_hw_sim::identifiableHeadBase).
+  Eigen::Isometry3d identifiable = Eigen::Isometry3d::Identity();
   double error_mm = 0, error_deg = 0, effective_error_mm = 0, effective_error_deg = 0;
+  double identifiable_error_mm = 0, identifiable_error_deg = 0;
   // The reported uncertainty of the fixed point (joint method's pixel-level fit): 3 sqrt(trace) of
   // the covariance's translation and rotation blocks; 0 when the response carries none.
   double bound3_mm = 0, bound3_deg = 0;

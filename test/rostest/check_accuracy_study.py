@@ -39,7 +39,7 @@ class AccuracyStudyTest(unittest.TestCase):
             self.assertAlmostEqual(float(r["reflection_probability"]), 0.05)
             # Each robot is its own: the head mount 45 mm (3 x 15 mm) off the nominal one.
             self.assertAlmostEqual(float(r["head_mount_offset_mm"]), 45.0, places=1)
-            for key in ("effective_error_mm", "effective_error_deg", "bound3_mm", "bound3_deg"):
+            for key in ("effective_error_mm", "effective_error_deg", "identifiable_error_mm", "bound3_mm", "bound3_deg"):
                 self.assertTrue(math.isfinite(float(r[key])), (key, r))
             # Millimetres against this robot's truth: had the images stayed with the previous true
             # robot, the error would be the tens of millimetres between the two robots' mounts.

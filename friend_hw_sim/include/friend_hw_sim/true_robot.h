@@ -35,4 +35,12 @@ TrueRobotError loadTrueError(const std::string& path, int seed_override = -1, do
 robot_description::RobotDescription applyTrueError(const robot_description::RobotDescription& nominal,
                                                    const TrueRobotError& error);
 
+// What a calibration of the head's fixed point (base -> head link 0) from the arm's marker can find
+// at best, for comparing with it. Effective: the true mount with the pan encoder's zero offset
+// folded in (it turns the whole head about the mount's z). Identifiable: the effective mount with
+// arm joint 1's zero offset folded in as well (it turns the whole arm about joint 1's axis, which
+// the images cannot tell from the head mount turning the other way about that axis).
+Eigen::Isometry3d effectiveHeadBase(const robot_description::RobotDescription& nominal, const TrueRobotError& error);
+Eigen::Isometry3d identifiableHeadBase(const robot_description::RobotDescription& nominal, const TrueRobotError& error);
+
 }  // namespace friend_hw_sim
