@@ -75,21 +75,72 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
     for (int k = 0; k < n; ++k) poses.push_back({d.arm_calibration_pose, d.head_calibration_pose});
     return poses;
   }
-  // Varied poses: the wrist turns the marker (so its offset error and the arm's joint offsets do
-  // not bias every sample the same way) and the head follows it, centred in the stereo view.
-  // Each pair turns different joints both ways, so any five poses move every identifiable joint.
+  // Varied poses, chosen so that every estimated parameter is excited (observability.h; measured
+  // with `imagenets calibration-plan`, figures in docs/calibration.md):
+  // - the arm turns the marker about different axes: every two poses turn other joints both ways
+  //   (the wrist and the elbow most), so the first three poses already hold two relative motions
+  //   about different axes and any five move every identifiable joint;
+  // - the head does not only centre the marker: it looks past it by a fraction of the field of
+  //   view, so the marker is seen in the centre and towards each image corner, with the pan and
+  //   tilt spread that brings.
   static const std::vector<std::vector<double>> variations_deg{
-      {0, 0, 0, 0, 0, 0, 0},     {0, 0, 0, 0, 10, 0, 25},    {0, 0, 0, 0, -10, 0, -25}, {0, 8, 0, -8, 0, 12, 0},
-      {0, -8, 0, 8, 0, -12, 0},  {6, 0, 8, 0, 0, 0, 12},     {-6, 0, -8, 0, 0, 0, -12}, {0, 5, 0, 5, 12, -8, 0},
-      {0, -5, 0, -5, -12, 8, 0}, {4, 4, 4, 4, 4, 4, 4}};
+      {0, 0, 0, 0, 0, 0, 0},      {0, 0, 0, 0, 20, 0, 25},     {0, 12, 0, -12, 0, 18, 0},  {0, 0, 0, 0, -20, 0, -25},
+      {0, -12, 0, 12, 0, -18, 0}, {10, 0, 14, 0, 0, 0, 16},    {-10, 0, -14, 0, 0, 0, -16}, {0, 8, 0, 8, 18, -12, 0},
+      {0, -8, 0, -8, -18, 12, 0}, {6, 6, 6, 6, 6, 6, 6}};
+  // Where the marker is put in the image, as a fraction of the half field of view (pan, tilt).
+  static const std::vector<std::pair<double, double>> image_positions{
+      {0, 0}, {0.5, 0.5}, {-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}};
+  std::string why;
+  const auto cameras = stereoCamerasOf(d, &why);
+  // Whether the whole marker is seen in both images, a margin from their borders, and not too
+  // obliquely for the detector.
+  auto visible = [&](const CalibrationPose& p) {
+    if (!cameras) return true;
+    const double margin = 0.15 * d.image_width, max_oblique = 50 * M_PI / 180;
+    for (bool right : {false, true}) {
+      const Eigen::Isometry3d m = (right ? model.rightCamera(p.head) : model.leftCamera(p.head)).inverse() * model.marker(p.arm);
+      if (-m.linear().col(2).dot(m.translation().normalized()) < std::cos(max_oblique)) return false;
+      for (const auto& corner : markerDefinedPoints(d.marker_size)) {
+        const Eigen::Vector3d pc = m * corner;
+        const Eigen::Vector2d uv = (right ? cameras->right : cameras->left).project(pc);
+        if (!(pc.z() > 0) || uv.x() < margin || uv.y() < margin || uv.x() > d.image_width - margin ||
+            uv.y() > d.image_height - margin) {
+          return false;
+        }
+      }
+    }
+    return true;
+  };
+  auto withinLimits = [](const std::vector<robot_description::ChainJoint>& joints, const std::vector<double>& q) {
+    for (size_t j = 0; j < joints.size() && j < q.size(); ++j) {
+      if (q[j] < joints[j].min || q[j] > joints[j].max) return false;
+    }
+    return true;
+  };
+  const double half_fov_x = cameras ? std::atan(d.image_width / 2.0 / cameras->left.K(0, 0)) : 0.0;
+  const double half_fov_y = cameras ? std::atan(d.image_height / 2.0 / cameras->left.K(1, 1)) : 0.0;
   for (int k = 0; k < n; ++k) {
     const auto& v = variations_deg[k % variations_deg.size()];
+    // A repeat of an arm variation sees the marker at another image position.
+    const auto& at = image_positions[(k + k / variations_deg.size()) % image_positions.size()];
     CalibrationPose p;
-    p.arm = d.arm_calibration_pose;
-    for (size_t j = 0; j < p.arm.size() && j < v.size(); ++j) p.arm[j] += v[j] * M_PI / 180.0;
-    const auto look = model.lookAt(model.marker(p.arm).translation(),
-                                   {d.head_calibration_pose[0], d.head_calibration_pose[1]});
-    p.head = {look[0], look[1]};
+    // Too far for this robot (joint limits, marker out of view or edge-on): smaller steps.
+    for (double scale = 1.0; scale > 0.05; scale *= 0.7) {
+      p.arm = d.arm_calibration_pose;
+      for (size_t j = 0; j < p.arm.size() && j < v.size(); ++j) p.arm[j] += scale * v[j] * M_PI / 180.0;
+      const auto look = model.lookAt(model.marker(p.arm).translation(), {d.head_calibration_pose[0], d.head_calibration_pose[1]});
+      p.head = {look[0], look[1]};
+      for (double f = 1.0; f > 0.1; f *= 0.7) {
+        CalibrationPose off = p;
+        off.head[0] += f * at.first * half_fov_x;
+        off.head[1] += f * at.second * half_fov_y;
+        if (withinLimits(d.head.joints, off.head) && visible(off)) {
+          p = off;
+          break;
+        }
+      }
+      if (withinLimits(d.arm.joints, p.arm) && visible(p)) break;
+    }
     poses.push_back(p);
   }
   return poses;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 
 #include "calibration_client.h"
 #include "command.h"
@@ -13,12 +14,14 @@ namespace tool {
 namespace {
 
 int calibrate(const Args& args) {
-  int redundancy = 5;
+  int redundancy = 5, poses = 0;
   std::string method;
   double timeout = 30;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--redundancy") {
       redundancy = intValue(args, i);
+    } else if (args[i] == "--poses") {
+      poses = intValue(args, i);
     } else if (args[i] == "--method") {
       method = flagValue(args, i);
     } else if (args[i] == "--wait") {
@@ -27,8 +30,9 @@ int calibrate(const Args& args) {
       throw unknownArgument(args[i]);
     }
   }
+  if (poses < 0) throw UsageError("--poses must be >= 0");
   CalibrationClient client("imagenets_calibrate", timeout);
-  const CalibrationRun run = client.calibrate(redundancy, method);
+  const CalibrationRun run = client.calibrate(redundancy, method, poses);
   const auto& r = run.response;
   std::printf("%s: %s\n", r.success ? "calibrated" : "FAILED", r.message.c_str());
   if (!r.success) return 1;
@@ -44,6 +48,12 @@ int calibrate(const Args& args) {
   if (run.bound3_mm > 0) {
     std::printf("uncertainty of the pixel-level fit (3 sigma = 3 sqrt(trace)): %.3f mm, %.4f deg\n", run.bound3_mm,
                 run.bound3_deg);
+  }
+  if (r.condition_number > 0) {
+    std::string names;
+    for (const auto& n : r.unobservable) names += (names.empty() ? "" : ", ") + n;
+    std::printf("observability: condition number %.3g; %s\n", r.condition_number,
+                names.empty() ? "every estimated parameter observable" : ("not observable from these poses: " + names).c_str());
   }
   std::printf("time: %.3f s compute, %.2f s with motion\n", r.compute_time, r.total_time);
   if (run.have_truth) {
@@ -62,7 +72,7 @@ int calibrate(const Args& args) {
 
 }  // namespace
 
-IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--method paper|joint] [--wait S]",
+IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--poses N] [--method paper|joint] [--wait S]",
                        "trigger the running friend_calibration node; print the fixed point (and its error in simulation)",
                        calibrate);
 

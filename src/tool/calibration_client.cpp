@@ -80,11 +80,12 @@ std::string CalibrationClient::setTrueRobot(int seed, double magnitude) {
 
 void CalibrationClient::setSimParam(const std::string& name, double value) { ros::param::set("/friend_sim/" + name, value); }
 
-CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& method) {
+CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& method, int poses) {
   CalibrationRun run;
   imagenets::Calibrate srv;
   srv.request.redundancy = redundancy;
   srv.request.method = method;
+  srv.request.poses = poses;
   const auto start = std::chrono::steady_clock::now();
   if (!ros::service::call("/friend_calibration/calibrate", srv)) {
     throw std::runtime_error("the call of /friend_calibration/calibrate failed (node died?)");

@@ -35,7 +35,8 @@ class CalibrationClient {
   // Initialises ROS (anonymous node `name`) if needed; waits up to `timeout` s for the service.
   CalibrationClient(const std::string& name, double timeout);
   ~CalibrationClient();
-  CalibrationRun calibrate(int redundancy, const std::string& method);
+  // `poses` > 0: that many samples (the request's `poses`), else redundancy x the node's poses per loop.
+  CalibrationRun calibrate(int redundancy, const std::string& method, int poses = 0);
   // Simulator only: makes it run another true robot (friend_sim/set_true_robot: `seed` > 0 draws
   // the random error of true_error.yaml's magnitudes times `magnitude`). Returns its message;
   // throws with it when the simulator refuses or is not there. Later runs compare with that truth.

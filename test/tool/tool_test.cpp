@@ -188,7 +188,7 @@ TEST(Tool, HelpListsEverySubCommandOnOneLine) {
     expectContains(r.output, "usage: imagenets COMMAND");
     const auto names = subCommands(r.output);
     for (const char* known : {"blocks", "validate", "run", "graph", "detect", "print-marker", "marker-study",
-                              "calibrate", "repeatability", "accuracy-study"}) {
+                              "calibrate", "repeatability", "accuracy-study", "calibration-plan"}) {
       EXPECT_NE(std::find(names.begin(), names.end(), known), names.end()) << known << " missing in:\n" << r.output;
     }
   }
@@ -248,4 +248,23 @@ TEST(Tool, UnknownCommandAndMissingArgumentsAreUsageErrors) {
   r = tool("accuracy-study --first-seed 0");
   EXPECT_EQ(r.status, 2);
   expectContains(r.output, "--first-seed must be >= 1");
+}
+
+TEST(Tool, CalibrationPlanNamesWhatItsPosesLeaveUnobservable) {
+  // One loop of the joint method (2 poses): one relative motion, so the marker's rotation about
+  // its axis and with it the fixed point are left to the priors.
+  Result r = tool("calibration-plan --poses 2", true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "calibration plan: method joint, 2 poses");
+  expectContains(r.output, "not observable from these poses (posterior std > 0.5 x prior): fixed point x");
+  expectContains(r.output, "marker offset rz");
+  // The default plan (5 loops x 2 poses) determines every estimated parameter.
+  r = tool("calibration-plan --list", true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "method joint, 10 poses");
+  expectContains(r.output, "pose  9: arm [");
+  expectContains(r.output, "every estimated parameter observable");
+  r = tool("calibration-plan --noise 0");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--noise must be positive");
 }
