@@ -32,43 +32,36 @@ struct ChainJoint {
 
 // The forward kinematics of one joint at position q (its offset is added here): the one
 // implementation, templated so that the calibration's bundle adjustment differentiates it with
-// Ceres' dual numbers (T = double everywhere else). The constant parts stay double.
+// Ceres' dual numbers (T = double everywhere else). Written as constant 3x4 parts (double) times
+// cos / sin of the angle (or the distance), so a dual number costs two products per entry:
+//   revolute:  origin Rot(a, v) tip = M0 + cos(v) Mc + sin(v) Ms, with Rot = a a^T + c (I - a a^T) + s [a]x
+//   prismatic: origin Trans(a v) tip = M0 + v Mv.
 template <typename T>
 Eigen::Matrix<T, 4, 4> jointMatrix(const ChainJoint& j, const T& q) {
   using std::cos;
   using std::sin;
   const T v = q + j.offset;
-  const Eigen::Vector3d& a = j.axis;
-  Eigen::Matrix<T, 3, 3> r;  // the motion: rotation r, translation p
-  Eigen::Matrix<T, 3, 1> p;
+  const Eigen::Matrix3d ro = j.origin.linear();
+  Eigen::Matrix<double, 3, 4> tip;
+  tip << j.tip.linear(), j.tip.translation();
+  Eigen::Matrix<double, 3, 4> m0, m1, m2 = Eigen::Matrix<double, 3, 4>::Zero();
   if (j.prismatic) {
-    r.setIdentity();
-    for (int i = 0; i < 3; ++i) p(i) = a(i) * v;
+    m0 = ro * tip;
+    m1.setZero();
+    m1.col(3) = ro * j.axis;
   } else {
-    const T c = cos(v), s = sin(v), k = T(1) - c;  // Rodrigues: c I + s [a]x + (1 - c) a a^T
-    r(0, 0) = c + k * (a.x() * a.x());
-    r(0, 1) = k * (a.x() * a.y()) - s * a.z();
-    r(0, 2) = k * (a.x() * a.z()) + s * a.y();
-    r(1, 0) = k * (a.y() * a.x()) + s * a.z();
-    r(1, 1) = c + k * (a.y() * a.y());
-    r(1, 2) = k * (a.y() * a.z()) - s * a.x();
-    r(2, 0) = k * (a.z() * a.x()) - s * a.y();
-    r(2, 1) = k * (a.z() * a.y()) + s * a.x();
-    r(2, 2) = c + k * (a.z() * a.z());
-    p.setZero();
+    const Eigen::Matrix3d aat = j.axis * j.axis.transpose();
+    Eigen::Matrix3d cross;
+    cross << 0, -j.axis.z(), j.axis.y(), j.axis.z(), 0, -j.axis.x(), -j.axis.y(), j.axis.x(), 0;
+    m0 = ro * aat * tip;
+    m1 = ro * (Eigen::Matrix3d::Identity() - aat) * tip;
+    m2 = ro * cross * tip;
   }
-  const Eigen::Matrix3d ro = j.origin.linear(), rt = j.tip.linear();
-  const Eigen::Vector3d to = j.origin.translation(), tt = j.tip.translation();
-  Eigen::Matrix<T, 3, 3> ar;  // origin * motion
-  Eigen::Matrix<T, 3, 1> at;
-  for (int i = 0; i < 3; ++i) {
-    for (int k = 0; k < 3; ++k) ar(i, k) = ro(i, 0) * r(0, k) + ro(i, 1) * r(1, k) + ro(i, 2) * r(2, k);
-    at(i) = ro(i, 0) * p(0) + ro(i, 1) * p(1) + ro(i, 2) * p(2) + to(i);
-  }
-  Eigen::Matrix<T, 4, 4> m = Eigen::Matrix<T, 4, 4>::Identity();  // ... * tip
-  for (int i = 0; i < 3; ++i) {
-    for (int k = 0; k < 3; ++k) m(i, k) = ar(i, 0) * rt(0, k) + ar(i, 1) * rt(1, k) + ar(i, 2) * rt(2, k);
-    m(i, 3) = ar(i, 0) * tt(0) + ar(i, 1) * tt(1) + ar(i, 2) * tt(2) + at(i);
+  m0.col(3) += j.origin.translation();
+  const T f1 = j.prismatic ? v : T(cos(v)), f2 = j.prismatic ? T(0) : T(sin(v));
+  Eigen::Matrix<T, 4, 4> m = Eigen::Matrix<T, 4, 4>::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) m(r, c) = f1 * m1(r, c) + f2 * m2(r, c) + m0(r, c);
   }
   return m;
 }
