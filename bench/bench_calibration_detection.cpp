@@ -116,10 +116,14 @@ int main() {
   // A variant: the shipped net with its feedback changed (one net per camera, in parallel).
   const imagenets::NetSpec shipped = imagenets::parseNetFile(CalibrationMarkerNet::defaultNetPath());
   std::vector<std::unique_ptr<CalibrationMarkerNet>> nets;
-  auto variant = [&](const std::function<void(imagenets::FeedbackSpec&)>& change, bool use_prediction) -> Detect {
+  auto variant = [&](const std::function<void(imagenets::FeedbackSpec&)>& change, bool use_prediction,
+                     double region_margin_px = 0) -> Detect {
     imagenets::NetSpec spec = shipped;
     for (auto& b : spec.blocks) {
       if (b.feedback) change(*b.feedback);
+      for (auto& p : b.properties) {
+        if (p.name == "margin_px" && region_margin_px > 0) p.text = std::to_string(static_cast<int>(region_margin_px));
+      }
     }
     CalibrationMarkerNet* pair[2];
     for (auto*& net : pair) {
@@ -134,6 +138,8 @@ int main() {
   auto always_sweep = [](imagenets::FeedbackSpec& f) { f.good_enough.reset(); };
   std::vector<Variant> variants;
   variants.push_back({"calibration default (Otsu first, stop if good)", variant([](imagenets::FeedbackSpec&) {}, true)});
+  // The region around the nominal prediction, wide enough for a head mount 6 deg off (about 150 px).
+  variants.push_back({"calibration default, region margin 300 px", variant([](imagenets::FeedbackSpec&) {}, true, 300)});
   variants.push_back({"always the coarse-to-fine sweep", variant(always_sweep, true)});
   // Candidates given as a list, tried in order, no first guess, no early stop.
   auto only = [](std::vector<double> values) {
