@@ -218,11 +218,17 @@ void CalibrationNode::onJointStates(const sensor_msgs::JointStateConstPtr& msg) 
   } catch (const std::exception&) {
     return;
   }
-  const Eigen::Isometry3d left = headChain(model_, head);
+  std::shared_ptr<const RobotModel> calibrated;
+  {
+    std::lock_guard<std::mutex> lock(calibration_mutex_);
+    calibrated = calibrated_model_;
+  }
+  const RobotModel& model = calibrated ? *calibrated : model_;
+  const Eigen::Isometry3d left = headChain(model, head);
   const auto& d = model_.description();
   std::vector<geometry_msgs::TransformStamped> t{
       imagenets::frames::toTransformStamped(left, child_frame_, "calibrated/" + d.left_camera.frame, msg->header.stamp),
-      imagenets::frames::toTransformStamped(left * model_.leftToRight(), child_frame_, "calibrated/" + d.right_camera_frame, msg->header.stamp)};
+      imagenets::frames::toTransformStamped(left * model.leftToRight(), child_frame_, "calibrated/" + d.right_camera_frame, msg->header.stamp)};
   tf_.sendTransform(t);
 }
 
@@ -467,8 +473,10 @@ void CalibrationNode::publish(const Result& result, const std::string& frame) {
   std::vector<geometry_msgs::TransformStamped> t{imagenets::frames::toTransformStamped(result.fixed_point, base, frame, now),
                                                  imagenets::frames::toTransformStamped(model_.headBase(), base, frame + "_nominal", now)};
   static_tf_.sendTransform(t);
+  auto calibrated = std::make_shared<const RobotModel>(calibratedModel(model_, result));
   std::lock_guard<std::mutex> lock(calibration_mutex_);
   current_ = result.fixed_point;
+  calibrated_model_ = std::move(calibrated);
   have_calibration_ = true;
 }
 
@@ -480,12 +488,13 @@ void CalibrationNode::publishSampleMarkers(const Result& result) {
   clear.action = visualization_msgs::Marker::DELETEALL;
   array.markers.push_back(clear);
   const auto& base = model_.description().base_frame;
+  const RobotModel calibrated = calibratedModel(model_, result);
   for (size_t i = 0; i < result.samples.size(); ++i) {
     Sample s = result.samples[i];
     if (s.head_q.size() != 2 || s.arm_q.size() != model_.description().arm.joints.size()) continue;
     solveSample(model_, s, fusion_, result.marker_offset);
     if (!s.valid) continue;
-    const Eigen::Isometry3d pose = result.fixed_point * headChain(model_, s.head_q) * s.marker_in_left;
+    const Eigen::Isometry3d pose = result.fixed_point * headChain(calibrated, s.head_q) * s.marker_in_left;
     visualization_msgs::Marker m;
     m.header.frame_id = base;
     m.header.stamp = ros::Time::now();

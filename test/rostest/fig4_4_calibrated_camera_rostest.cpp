@@ -20,6 +20,7 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 
 #include "friend_calibration/calibration.h"
+#include "friend_calibration/storage.h"
 #include "friend_hw_sim/cameras.h"
 #include "robot_description/joint_state.h"
 #include "robot_description/robot_model.h"
@@ -74,7 +75,7 @@ TEST(Fig4_4CalibratedCamera, ExtrinsicsCloudAndDetectionImages) {
   EXPECT_GT(info->K[0], 0.0);
 
   // The extrinsics of an image taken after the calibration, and independently: the calibrated
-  // fixed point (service response) * the nominal head chain at the head's current angles (the head
+  // fixed point (service response) * the calibrated head chain at the head's current angles (the head
   // rests after the calibration, so joint_states now are the angles at that image).
   auto ext = extrinsics.waitFrom(calibrated + ros::Duration(0.3), 20.0);
   ASSERT_TRUE(ext) << "no /fig4_4/left/extrinsics after the calibration";
@@ -87,7 +88,10 @@ TEST(Fig4_4CalibratedCamera, ExtrinsicsCloudAndDetectionImages) {
   ASSERT_TRUE(js);
   const robot_description::RobotModel model(robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
   const std::vector<double> head = robot_description::jointPositions(*js, model.description().head.names());
-  const Eigen::Isometry3d expected = fixed_point * friend_calibration::headChain(model, head);
+  // The head chain as calibrated: with the estimated zero offsets (the tilt's) of the saved file.
+  const robot_description::RobotModel calibrated_model =
+      friend_calibration::calibratedModel(model, friend_calibration::loadCalibration(srv.response.file).result);
+  const Eigen::Isometry3d expected = fixed_point * friend_calibration::headChain(calibrated_model, head);
   const Eigen::Isometry3d got = imagenets::frames::toIsometry(ext->transform, "extrinsics");
   EXPECT_LT((got.translation() - expected.translation()).norm(), 1e-4)
       << "got " << got.translation().transpose() << ", expected " << expected.translation().transpose();

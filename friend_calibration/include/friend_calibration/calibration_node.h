@@ -113,9 +113,12 @@ class CalibrationNode {
   std::mutex data_mutex_;  // guards last_chain_tf_
   ros::Time last_chain_tf_;
 
-  std::mutex calibration_mutex_;  // guards current_ (the published calibration)
+  std::mutex calibration_mutex_;  // guards current_ and calibrated_model_ (the published calibration)
   bool have_calibration_ = false;
   Eigen::Isometry3d current_ = Eigen::Isometry3d::Identity();
+  // The robot as calibrated (estimated joint zero offsets, e.g. the head's tilt): the head chain
+  // of the calibrated camera frames.
+  std::shared_ptr<const RobotModel> calibrated_model_;
   std::mutex busy_mutex_;  // guards busy_with_, and busy_ being set
   std::atomic<bool> busy_{false};
   std::string busy_with_;
