@@ -6,10 +6,18 @@ import os
 import subprocess
 import unittest
 
+import glob
+import sys
+
 import roslib.packages
 import rospy
 import rostest
-from imagenets.srv import SetTrueRobot
+
+# ctest runs rostests without the devel space's setup sourced: its generated Python messages are
+# found as setup.bash would find them, from the prefixes catkin sets.
+for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":"):
+    sys.path.extend(glob.glob(os.path.join(prefix, "lib", "python3*", "dist-packages")))
+from imagenets.srv import SetTrueRobot  # noqa: E402
 
 SEEDS = (6, 7)  # two true robots of three times the default error whose views the calibration detects
 
