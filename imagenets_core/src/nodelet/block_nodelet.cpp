@@ -189,13 +189,19 @@ class BlockHost {
   // publishes what it outputs. Returns the error, empty on success.
   std::string runLocked() {
     if (pairing_->isSource()) cached_inputs_ = pairing_->latest();
-    running_ = true;  // ~status says "running" while inner progress comes in
-    progress_.clear();
+    {
+      std::lock_guard<std::mutex> lock(status_mutex_);
+      running_ = true;  // ~status says "running" while inner progress comes in
+      progress_.clear();
+    }
     // What runs inside the block (a sub-net) reports on ~status while it runs.
     BlockInvocation run = invokeBlock(*block_, name_, cached_inputs_, block_->propertyValues(),
                                       RunChannel{[this](const RunEvent& e) { onInnerEvent(e); }, {}});
-    running_ = false;
-    stats_.record(run.status, run.message, run.ms, run.processed);
+    {
+      std::lock_guard<std::mutex> lock(status_mutex_);
+      running_ = false;
+      stats_.record(run.status, run.message, run.ms, run.processed);
+    }
     if (run.status == BlockStatus::Ok) {
       for (size_t i = 0; i < publishers_.size(); ++i) {
         const Value& out = run.outputs[i];
@@ -209,13 +215,15 @@ class BlockHost {
     return run.status == BlockStatus::Ok ? std::string() : run.message;
   }
 
-  // An event from inside the block, on the thread running it (mutex_ is held by runLocked).
+  // An event from inside the block (runLocked holds mutex_), on whichever thread of the inner net
+  // ran that inner block: parallel inner blocks report at the same time, hence status_mutex_.
   void onInnerEvent(RunEvent e) {
     if (e.kind == RunEventKind::BlockStarted || e.kind == RunEventKind::RunFinished) return;
     // "<nodelet>/<inner block>" -> "<inner block>"; the block's own events (repetitions) lose the name.
     e.block = e.block.size() > name_.size() ? e.block.substr(name_.size() + 1) : std::string();
+    std::lock_guard<std::mutex> lock(status_mutex_);
     progress_ = imagenets::describe(e);
-    publishStatus();
+    publishStatusLocked();
   }
 
   // publish_internal_ports: every inner output port becomes a topic; a value is published only
@@ -352,6 +360,10 @@ class BlockHost {
   void publishUpdates() { updates_pub_.publish(encodeProperties(specs_, currentValues())); }
 
   void publishStatus() {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    publishStatusLocked();
+  }
+  void publishStatusLocked() {
     auto s = boost::make_shared<imagenets::BlockNodeletStatus>();
     s->header.stamp = ros::Time::now();
     s->block = name_;
@@ -395,6 +407,7 @@ class BlockHost {
   ros::Timer timer_;
 
   BlockStats stats_;
+  std::mutex status_mutex_;  // guards running_, progress_ and stats_ (read by every ~status publish)
   bool running_ = false;
   std::string progress_;
 };
