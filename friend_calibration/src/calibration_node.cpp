@@ -488,13 +488,17 @@ void CalibrationNode::publishSampleMarkers(const Result& result) {
   clear.action = visualization_msgs::Marker::DELETEALL;
   array.markers.push_back(clear);
   const auto& base = model_.description().base_frame;
-  const RobotModel calibrated = calibratedModel(model_, result);
+  std::shared_ptr<const RobotModel> calibrated;  // publish(result) made it
+  {
+    std::lock_guard<std::mutex> lock(calibration_mutex_);
+    calibrated = calibrated_model_;
+  }
   for (size_t i = 0; i < result.samples.size(); ++i) {
     Sample s = result.samples[i];
     if (s.head_q.size() != 2 || s.arm_q.size() != model_.description().arm.joints.size()) continue;
     solveSample(model_, s, fusion_, result.marker_offset);
     if (!s.valid) continue;
-    const Eigen::Isometry3d pose = result.fixed_point * headChain(calibrated, s.head_q) * s.marker_in_left;
+    const Eigen::Isometry3d pose = result.fixed_point * headChain(*calibrated, s.head_q) * s.marker_in_left;
     visualization_msgs::Marker m;
     m.header.frame_id = base;
     m.header.stamp = ros::Time::now();

@@ -251,7 +251,9 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
                     double half_band, cv::Vec3d* line, int* saturated) {
   const double f = 0.5 * (cam.K(0, 0) + cam.K(1, 1));
   const cv::Point2d t = (b - a) / cv::norm(b - a);
-  double theta = std::atan2(-t.x, t.y), c = cv::Point2d(std::cos(theta), std::sin(theta)).dot(a);
+  double theta = std::atan2(-t.x, t.y);
+  const cv::Point2d n0(std::cos(theta), std::sin(theta));  // the starting line's normal
+  double c = n0.dot(a);
   // Candidate pixels: the box around the segment, widened by the band.
   const std::vector<cv::Point2d> ends = distort({a, b}, cam);
   const double pad = half_band + 2;
@@ -282,7 +284,7 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
   std::vector<double> v;
   for (size_t i = 0; i < q_all.size(); ++i) {
     const double u = (q_all[i] - a).dot(t) / len;
-    const double d = f * (cv::Point2d(std::cos(theta), std::sin(theta)).dot(q_all[i]) - c);
+    const double d = f * (n0.dot(q_all[i]) - c);
     if (u > 0.15 && u < 0.85 && std::abs(d) <= half_band) q.push_back(q_all[i]), v.push_back(value[i]);
   }
   if (q.size() < 20) return false;
@@ -291,7 +293,7 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
   double lo = 0, hi = 0;
   int n_lo = 0, n_hi = 0;
   for (size_t i = 0; i < q.size(); ++i) {
-    const double d = f * (cv::Point2d(std::cos(theta), std::sin(theta)).dot(q[i]) - c);
+    const double d = f * (n0.dot(q[i]) - c);
     if (d < 0) lo += v[i], ++n_lo;
     else hi += v[i], ++n_hi;
   }

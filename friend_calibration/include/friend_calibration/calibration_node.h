@@ -83,7 +83,7 @@ class CalibrationNode {
   void publish(const Result& result, const std::string& frame);
   std::string savePictures(const StereoPair& pair, const Sample& sample);
   void publishDetections(const StereoPair& pair, const Sample& sample);
-  void publishSampleMarkers(const Result& result);
+  void publishSampleMarkers(const Result& result);  // after publish(result): its calibrated model
 
   ros::NodeHandle nh_, pnh_;
   RobotModel model_;
