@@ -225,13 +225,16 @@ CollectorRegistration<std_msgs::Int32, std_msgs::Float64MultiArray> indices(
       return all;
     });
 
-TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
-  write("index.yaml", R"(
+// A net that hands out the index its input `k` is told.
+const char* kIndex = R"(
 blocks:
   k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
   out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
 links: [k.value -> out.value]
-)");
+)";
+
+TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
+  write("index.yaml", kIndex);
   write("indexed.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, repeat: 4, "
                         "repetition_input: k}}\n");
   auto e = loadFile("indexed.yaml");
@@ -265,6 +268,16 @@ links: [k.value -> out.value]
   }
 }
 
+// An until net: done when the indices so far (`index_all`) add up to the input `target`.
+const char* kSumReached = R"(
+blocks:
+  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  sum: {type: test/SumAtLeast}
+  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reached -> done.value]
+)";
+
 // Repeat until: past N repetitions one more at a time, until the until net says done.
 TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   // The repeated net hands out its index; `target` is an input it does not use itself.
@@ -275,16 +288,8 @@ blocks:
   out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
 links: [k.value -> out.value]
 )");
-  // Done when the indices so far add up to the target: fed from the block's input `target` and
-  // the collection `index_all` of the repetitions so far.
-  write("sum_reached.yaml", R"(
-blocks:
-  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
-  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
-  sum: {type: test/SumAtLeast}
-  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
-links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reached -> done.value]
-)");
+  // Its until net is fed from the block's input `target` and the collection `index_all` so far.
+  write("sum_reached.yaml", kSumReached);
   write("until.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, repeat: 2, "
                       "repetition_input: k, until_net: sum_reached.yaml, max_repeat: 8}}\n");
   auto e = loadFile("until.yaml");
@@ -344,20 +349,8 @@ links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reache
 }
 
 TEST(SubNet, AnUntilNetWhosePortsDoNotFitIsNamed) {
-  write("index_only.yaml", R"(
-blocks:
-  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
-links: [k.value -> out.value]
-)");
-  write("until_wants_more.yaml", R"(
-blocks:
-  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
-  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
-  sum: {type: test/SumAtLeast}
-  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
-links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reached -> done.value]
-)");
+  write("index.yaml", kIndex);
+  write("sum_reached.yaml", kSumReached);  // wants `target`, which this block does not have
   write("until_no_done.yaml", R"(
 blocks:
   index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
@@ -365,7 +358,7 @@ blocks:
 links: [index_all.value -> stop.value]
 )");
   auto error = [](const std::string& until) {
-    write("until_bad.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_only.yaml, "
+    write("until_bad.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, "
                             "repetition_input: k, until_net: " + until + ", max_repeat: 3}}\n");
     try {
       Net::loadFile(dir() + "/until_bad.yaml");
@@ -374,9 +367,9 @@ links: [index_all.value -> stop.value]
     }
     return std::string("no error");
   };
-  const std::string unmatched = error("until_wants_more.yaml");
+  const std::string unmatched = error("sum_reached.yaml");
   EXPECT_NE(unmatched.find("property 'until_net': input 'target' of"), std::string::npos) << unmatched;
-  EXPECT_NE(unmatched.find("until_wants_more.yaml"), std::string::npos) << unmatched;
+  EXPECT_NE(unmatched.find("sum_reached.yaml"), std::string::npos) << unmatched;
   EXPECT_NE(unmatched.find("(have: index_all)"), std::string::npos) << unmatched;
   const std::string no_done = error("until_no_done.yaml");
   EXPECT_NE(no_done.find("property 'until_net'"), std::string::npos) << no_done;
