@@ -19,8 +19,9 @@ for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":"):
     sys.path.extend(glob.glob(os.path.join(prefix, "lib", "python3*", "dist-packages")))
 from imagenets.srv import SetTrueRobot  # noqa: E402
 
-# Two true robots of three times the default error whose marker the nominal model predicts
-# further off than the detection's first region (120 px): found by its whole-image retry.
+# Two true robots of three times the default error whose marker the nominal model predicts so far
+# off that a region of 120 px around the prediction missed it (the calibration failed for them
+# before its detection's first region became 300 px, with the whole image after it).
 SEEDS = (9, 10)
 
 
