@@ -53,6 +53,39 @@ links: [c.value -> sub.x, sub.y -> after.in]
   EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("after.out")->data, 7.0);
 }
 
+TEST(SubNet, AnOptionalInputMayStayWithoutAValue) {
+  write("add.yaml", R"(
+blocks:
+  a: {type: imagenets/ExecutorInput, properties: {port: a, type: std_msgs/Float64}}
+  b: {type: imagenets/ExecutorInput, properties: {port: b, type: std_msgs/Float64, optional: true}}
+  add: {type: test/Add}
+  sum: {type: imagenets/ExecutorOutput, properties: {port: sum, type: std_msgs/Float64}}
+links: [a.value -> add.a, b.value -> add.b, add.sum -> sum.value]
+)");
+  write("outer_optional.yaml", R"(
+blocks:
+  sub: {type: imagenets/Executor, properties: {net: add.yaml}}
+)");
+  auto e = loadFile("outer_optional.yaml");
+  const auto number = [](double v) {
+    auto m = boost::make_shared<std_msgs::Float64>();
+    m->data = v;
+    return PortType::of<std_msgs::Float64>().wrap<std_msgs::Float64>(m);
+  };
+  // Without `a` (required) the block does not run; without `b` (optional) it does.
+  e->setInput("sub.b", number(5));
+  const RunReport without_a = e->run();
+  ASSERT_EQ(without_a.not_run.size(), 1u);
+  EXPECT_NE(without_a.not_run.front().find("input 'a' has no value"), std::string::npos) << without_a.not_run.front();
+  e->setInput("sub.a", number(2));
+  e->setInput("sub.b", Value());
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("sub.sum")->data, 2.0);
+  e->setInput("sub.b", number(5));
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("sub.sum")->data, 7.0);
+}
+
 TEST(SubNet, OuterLinksAreTypeChecked) {
   write("double.yaml", kDouble);
   write("bad_outer.yaml", R"(
