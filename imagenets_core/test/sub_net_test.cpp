@@ -11,6 +11,7 @@
 #include "imagenets/collectors.h"
 #include "imagenets/executor.h"
 #include "imagenets/graph.h"
+#include "imagenets/net_wide_property.h"
 #include "test_blocks.h"
 
 using namespace imagenets;
@@ -277,6 +278,43 @@ links: [c.value -> sub.x]
   Executor e(Net::build(spec), ExecutorOptions{2});
   ASSERT_TRUE(e.run().ok());
   EXPECT_DOUBLE_EQ(e.output<std_msgs::Float64>("sub.y")->data, 2.0);
+}
+
+// One value for every block that declares a property of that name, sub-nets at any depth included
+// (e.g. the robot description of a calibration node's nets).
+TEST(SubNet, APropertyIsSetOnEveryBlockOfTheNetTreeThatHasIt) {
+  write("level3.yaml", kDouble);
+  write("level2.yaml", R"(
+blocks:
+  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  inner: {type: imagenets/Executor, properties: {net: level3.yaml}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+links: [in.value -> inner.x, inner.y -> out.value]
+)");
+  write("tree.yaml", R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 3}}
+  sub: {type: imagenets/Executor, properties: {net: level2.yaml}}
+  after: {type: test/Scale, properties: {offset: 1}}
+links: [c.value -> sub.x, sub.y -> after.in]
+)");
+  auto e = loadFile("tree.yaml");
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("after.out")->data, 7.0);  // 3 * 2 * 1 + 1
+  EXPECT_EQ(setPropertyInNetTree(*e, "gain", "5"), (std::vector<std::string>{"sub/inner/scale", "after"}));
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("after.out")->data, 76.0);  // 3 * 5 * 5 + 1
+  // A filter on the property's declaration: here only integer properties named `gain` (none).
+  EXPECT_TRUE(setPropertyInNetTree(*e, "gain", "7", [](const PropertySpec& p) { return p.kind() == PropertyKind::Int; })
+                  .empty());
+  // A value that is not valid for a block names the block and the property.
+  try {
+    setPropertyInNetTree(*e, "gain", "not a number");
+    FAIL();
+  } catch (const std::exception& err) {
+    EXPECT_NE(std::string(err.what()).find("gain"), std::string::npos) << err.what();
+    EXPECT_NE(std::string(err.what()).find("scale"), std::string::npos) << err.what();
+  }
 }
 
 TEST(SubNet, GraphDrawsSubNetsAsClustersAndFeedbackDashed) {

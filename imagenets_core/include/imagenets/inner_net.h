@@ -11,6 +11,8 @@ class InnerNet {
   virtual ~InnerNet() = default;
   // The inner executor (null before configure()); its public API is thread-safe.
   virtual const Executor* innerExecutor() const = 0;
+  // The same, to change it (e.g. a property of its blocks: net_wide_property.h).
+  virtual Executor* innerExecutor() = 0;
 };
 
 }  // namespace imagenets

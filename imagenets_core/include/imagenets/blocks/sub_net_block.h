@@ -32,6 +32,7 @@ class SubNetBlock : public Block, public InnerNet {
 
   const Net* subNet() const override;
   const Executor* innerExecutor() const override { return executor_.get(); }
+  Executor* innerExecutor() override { return executor_.get(); }
 
  private:
   struct InPort {
