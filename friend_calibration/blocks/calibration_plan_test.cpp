@@ -72,3 +72,36 @@ TEST(CalibrationPlan, ThePosesPropertyGivesThatManySamplesWhateverTheLoops) {
   paper.set("method", std::string("paper")).set("poses", 4);
   EXPECT_NE(paper.runError().find("property 'poses': the paper method's samples must be odd"), std::string::npos);
 }
+
+TEST(CalibrationPlan, AnUncertaintyTargetPlansTheNextPosesUpToMaxPoses) {
+  BlockHarness h("imagenets/CalibrationPlan");
+  h.set("method", std::string("joint")).set("poses", 6).set("target_uncertainty", 0.0004).set("max_poses", 14);
+  h.run();
+  const auto plan = h.output<imagenets::CalibrationPlan>("plan");
+  ASSERT_TRUE(plan);
+  EXPECT_EQ(plan->samples, 6);  // taken in any case
+  EXPECT_EQ(plan->max_samples, 14);
+  EXPECT_EQ(plan->target_uncertainty, 0.0004);
+  EXPECT_EQ(h.output<std_msgs::Int32>("samples")->data, 6);
+  EXPECT_EQ(h.output<std_msgs::Int32>("max_samples")->data, 14);
+  // The poses added are the ones a 14-pose plan takes after its first six.
+  ASSERT_EQ(plan->arm.size(), 14u);
+  const auto poses = calibrationPoses(nominal(), 14, "joint");
+  const auto six = calibrationPoses(nominal(), 6, "joint");
+  for (size_t k = 0; k < 14; ++k) EXPECT_EQ(plan->arm[k].position, poses[k].arm);
+  for (size_t k = 0; k < 6; ++k) EXPECT_EQ(six[k].arm, poses[k].arm);
+  // Without a target max_poses does not matter.
+  BlockHarness off("imagenets/CalibrationPlan");
+  off.set("method", std::string("joint")).set("poses", 6).set("max_poses", 14);
+  off.run();
+  EXPECT_EQ(off.output<imagenets::CalibrationPlan>("plan")->max_samples, 6);
+  EXPECT_EQ(off.output<imagenets::CalibrationPlan>("plan")->arm.size(), 6u);
+  // Named errors: a maximum below the poses asked for; the paper method (no covariance).
+  BlockHarness below("imagenets/CalibrationPlan");
+  below.set("method", std::string("joint")).set("poses", 6).set("target_uncertainty_rotation", 0.001).set("max_poses", 4);
+  EXPECT_NE(below.runError().find("property 'max_poses': 4 is below the 6 poses"), std::string::npos);
+  BlockHarness paper("imagenets/CalibrationPlan");
+  paper.set("method", std::string("paper")).set("loops", 3).set("target_uncertainty", 0.001);
+  EXPECT_NE(paper.runError().find("property 'target_uncertainty': an uncertainty target needs the joint method"),
+            std::string::npos);
+}

@@ -1,5 +1,6 @@
 #include "calibration_ports.h"
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -22,9 +23,11 @@ const RobotModel& robotModel(const std::string& path) {
 int sampleIndex(const imagenets::Context& ctx, const imagenets::CalibrationPlan& plan) {
   const auto repetition = ctx.input<std_msgs::Int32>("repetition");
   const int k = repetition ? repetition->data : ctx.property<int>("index");
-  if (k < 0 || k >= plan.samples) {
+  // With an uncertainty target the plan holds poses beyond `samples`, up to `max_samples`.
+  const int planned = std::max(plan.samples, plan.max_samples);
+  if (k < 0 || k >= planned) {
     throw imagenets::BlockError(std::string(repetition ? "input 'repetition'" : "property 'index'") + ": sample " +
-                                std::to_string(k) + " of a plan of " + std::to_string(plan.samples) + " samples");
+                                std::to_string(k) + " of a plan of " + std::to_string(planned) + " samples");
   }
   return k;
 }

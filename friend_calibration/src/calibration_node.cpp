@@ -19,6 +19,7 @@
 
 #include "friend_calibration/calibration_msgs.h"
 #include "imagenets/vision/frames.h"
+#include "imagenets/blocks/sub_net_block.h"
 #include "imagenets/inner_net.h"
 #include "imagenets/net_wide_property.h"
 #include "robot_description/joint_state.h"
@@ -54,6 +55,9 @@ void fill(Out& out, const Result& r, const std::string& base, const std::string&
   out.compute_time = r.compute_time;
   out.unobservable = r.unobservable;
   out.condition_number = r.condition_number;
+  out.uncertainty = r.has_covariance ? 3 * r.sigmaTranslation() : 0.0;
+  out.uncertainty_rotation = r.has_covariance ? 3 * r.sigmaRotation() : 0.0;
+  out.poses_taken = static_cast<int>(r.samples.size());
 }
 
 // The detected marker points of one image drawn on it (bgr8): the outer corners as a red
@@ -76,6 +80,29 @@ cv::Mat drawObservation(const sensor_msgs::ImageConstPtr& img, const MarkerObser
   cv::putText(colour, text, cv::Point(10, 20 + 20 * w), cv::FONT_HERSHEY_SIMPLEX, 0.5 * w, cv::Scalar(0, 255, 255), w,
               cv::LINE_AA);
   return colour;
+}
+
+// "; uncertainty target met: 3 sigma 0.312 mm / 0.0310 deg after 12 poses (target 0.400 mm, at
+// most 30 poses)" -- or "NOT met".
+std::string targetNote(const imagenets::Calibrate::Response& res, double target, double target_rotation, int max_poses) {
+  std::string bounds = "no uncertainty";
+  std::string wanted;
+  char b[160];
+  if (res.uncertainty > 0) {
+    std::snprintf(b, sizeof b, "3 sigma %.3f mm / %.4f deg", 1000 * res.uncertainty, res.uncertainty_rotation * 180 / M_PI);
+    bounds = b;
+  }
+  if (target > 0) {
+    std::snprintf(b, sizeof b, "%.3f mm", 1000 * target);
+    wanted = b;
+  }
+  if (target_rotation > 0) {
+    std::snprintf(b, sizeof b, "%s%.4f deg", wanted.empty() ? "" : " / ", target_rotation * 180 / M_PI);
+    wanted += b;
+  }
+  return std::string("; uncertainty target ") + (res.target_met ? "met: " : "NOT met: ") + bounds + " after " +
+         std::to_string(res.poses_taken) + " poses (target " + wanted + ", at most " + std::to_string(max_poses) +
+         " poses)";
 }
 
 // The action's result and the service's response are one message definition (same fields, same
@@ -109,6 +136,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   default_redundancy_ = pnh_.param("redundancy", 5);
   default_method_ = pnh_.param<std::string>("method", "joint");
   poses_per_loop_ = pnh_.param("poses_per_loop", 2);
+  max_poses_ = pnh_.param("max_poses", 30);
   min_valid_fraction_ = pnh_.param("min_valid_fraction", 0.5);
   fusion_.max_position_difference = pnh_.param("fusion/max_position_difference", fusion_.max_position_difference);
   fusion_.max_angle_difference = pnh_.param("fusion/max_angle_difference", fusion_.max_angle_difference);
@@ -213,6 +241,12 @@ void CalibrationNode::loadNets(const std::string& net, const std::string& replay
   }
 }
 
+imagenets::Executor* CalibrationNode::untilNet(const imagenets::Executor& exec) {
+  const int samples = exec.net().findNode("samples");
+  const auto* block = samples < 0 ? nullptr : dynamic_cast<const imagenets::SubNetBlock*>(exec.net().node(samples).block.get());
+  return block ? block->untilExecutor() : nullptr;
+}
+
 void CalibrationNode::onJointStates(const sensor_msgs::JointStateConstPtr& msg) {
   {
     std::lock_guard<std::mutex> lock(data_mutex_);
@@ -256,11 +290,10 @@ void CalibrationNode::onAction(const imagenets::CalibrateGoalConstPtr& goal) {
   req.replay = goal->replay;
   req.method = goal->method;
   req.poses = goal->poses;
-  auto progress = [this](int k, int n, const std::string& stage) {
-    imagenets::CalibrateFeedback f;
-    f.sample = k;
-    f.samples = n;
-    f.stage = stage;
+  req.target_uncertainty = goal->target_uncertainty;
+  req.target_uncertainty_rotation = goal->target_uncertainty_rotation;
+  req.max_poses = goal->max_poses;
+  auto progress = [this](const imagenets::CalibrateFeedback& f) {
     std::lock_guard<std::mutex> lock(feedback_mutex_);
     action_->publishFeedback(f);
   };
@@ -293,6 +326,7 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     busy_ = true;
     busy_with_ = (req.replay.empty() ? req.poses > 0 ? std::to_string(req.poses) + " poses" : "redundancy " + std::to_string(n)
                                      : "replay of " + req.replay) +
+                 (req.target_uncertainty > 0 || req.target_uncertainty_rotation > 0 ? " until certain" : "") +
                  ", method " + method + ", started " + utcStamp(true);
   }
   struct Release {
@@ -306,6 +340,25 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
       throw std::runtime_error("unknown method '" + method + "' (expected 'paper' or 'joint')");
     }
     if (req.poses < 0) throw std::runtime_error("request field 'poses' is " + std::to_string(req.poses) + " (expected >= 0)");
+    // The uncertainty target (joint method): after the requested poses, the plan's next ones until
+    // the fixed point's 3-sigma bounds are within it; the loop is the net's (calibration_target.yaml).
+    if (!(req.target_uncertainty >= 0) || !std::isfinite(req.target_uncertainty)) {
+      throw std::runtime_error("request field 'target_uncertainty' is " + std::to_string(req.target_uncertainty) +
+                               " (expected >= 0: the fixed point's 3-sigma translation bound to reach, m; 0 = off)");
+    }
+    if (!(req.target_uncertainty_rotation >= 0) || !std::isfinite(req.target_uncertainty_rotation)) {
+      throw std::runtime_error("request field 'target_uncertainty_rotation' is " +
+                               std::to_string(req.target_uncertainty_rotation) +
+                               " (expected >= 0: the fixed point's 3-sigma rotation bound to reach, rad; 0 = off)");
+    }
+    if (req.max_poses < 0) {
+      throw std::runtime_error("request field 'max_poses' is " + std::to_string(req.max_poses) + " (expected >= 0)");
+    }
+    const bool target = req.target_uncertainty > 0 || req.target_uncertainty_rotation > 0;
+    if (target && !req.replay.empty()) {
+      throw std::runtime_error("request field 'target_uncertainty': a replay re-solves the stored samples and "
+                               "cannot take more poses (leave the target 0 for a replay)");
+    }
     // The plan and the solve's limits are the net's properties.
     imagenets::Executor& exec = req.replay.empty() ? *live_ : *replay_;
     exec.setProperty("plan", "method", method);
@@ -313,16 +366,29 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     exec.setProperty("plan", "loops", n);
     exec.setProperty("plan", "poses_per_loop", poses_per_loop_);
     exec.setProperty("plan", "poses", static_cast<int>(req.poses));
-    exec.setProperty("solve", "max_position_difference", fusion_.max_position_difference);
-    exec.setProperty("solve", "max_angle_difference", fusion_.max_angle_difference);
-    exec.setProperty("solve", "min_valid_fraction", min_valid_fraction_);
-    const int total = !req.replay.empty() ? 0
-                      : req.poses > 0     ? static_cast<int>(req.poses)
-                                          : n * (method == "joint" ? std::max(1, poses_per_loop_) : 1);
+    const int requested = !req.replay.empty() ? 0
+                          : req.poses > 0     ? static_cast<int>(req.poses)
+                                              : n * (method == "joint" ? std::max(1, poses_per_loop_) : 1);
+    const int max_poses = req.max_poses > 0 ? static_cast<int>(req.max_poses) : std::max(max_poses_, requested);
+    exec.setProperty("plan", "target_uncertainty", static_cast<double>(req.target_uncertainty));
+    exec.setProperty("plan", "target_uncertainty_rotation", static_cast<double>(req.target_uncertainty_rotation));
+    exec.setProperty("plan", "max_poses", std::max(1, max_poses));
+    // The solve's limits, for the net's solve and for the one that decides whether a target is met.
+    imagenets::Executor* until = untilNet(exec);
+    for (imagenets::Executor* e : {&exec, until}) {
+      if (!e || e->net().findNode("solve") < 0) continue;
+      e->setProperty("solve", "max_position_difference", fusion_.max_position_difference);
+      e->setProperty("solve", "max_angle_difference", fusion_.max_angle_difference);
+      e->setProperty("solve", "min_valid_fraction", min_valid_fraction_);
+    }
+    const int total = target ? max_poses : requested;
     StereoPair last_pair;
     double detection_time = 0;
-    const Result r = runNet(exec, progress, total, &last_pair, &detection_time);
+    const Result r = runNet(exec, progress, total, requested, &last_pair, &detection_time);
     fill(res, r, base, child_frame_);
+    res.target_met = r.withinUncertaintyTarget(req.target_uncertainty, req.target_uncertainty_rotation);
+    const std::string target_note =
+        target ? targetNote(res, req.target_uncertainty, req.target_uncertainty_rotation, max_poses) : "";
     res.total_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!req.replay.empty()) {
       // Re-solved stored samples: no robot, nothing saved or published.
@@ -333,13 +399,14 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     }
     res.compute_time = r.compute_time + detection_time;  // image processing + solving, no motion
     if (!r.success) {
-      res.message = "calibration failed: " + r.message + "; the saved calibration and the published frame are unchanged";
+      res.message = "calibration failed: " + r.message + target_note +
+                    "; the saved calibration and the published frame are unchanged";
       return res;
     }
     const std::string refusal = overwriteRefusal(r, calibration_file_, pnh_.param("max_uncertainty", 0.002));
     if (!refusal.empty()) {
       res.success = false;
-      res.message = refusal + "; " + r.message;
+      res.message = refusal + "; " + r.message + target_note;
       ROS_WARN("%s", res.message.c_str());
       return res;
     }
@@ -365,7 +432,7 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     char b[256];
     std::snprintf(b, sizeof b, "; fixed point [%.4f %.4f %.4f] m; saved to %s", t.x(), t.y(), t.z(),
                   calibration_file_.c_str());
-    res.message = r.message + b + (archived.empty() ? "" : " (previous kept as " + archived + ")") + urdf_note +
+    res.message = r.message + target_note + b + (archived.empty() ? "" : " (previous kept as " + archived + ")") + urdf_note +
                   (pictures.empty() ? "" : "; pictures: " + pictures);
     ROS_INFO("%s", res.message.c_str());
   } catch (const std::exception& e) {
@@ -378,21 +445,29 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
   return res;
 }
 
-Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progress, int samples, StereoPair* last_pair,
-                               double* detection_time) {
+Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progress, int samples, int requested,
+                               StereoPair* last_pair, double* detection_time) {
   // The sample net's own outputs after each repetition: the stereo pair and the sample, for the
   // live detection images (its inner executor is idle between repetitions).
   const int samples_node = exec.net().findNode("samples");
   const auto* inner = dynamic_cast<const imagenets::InnerNet*>(exec.net().node(samples_node).block.get());
+  const imagenets::Executor* until = samples > requested ? untilNet(exec) : nullptr;
   std::mutex mutex;
   int done = 0;
   double left_ms = 0, right_ms = 0;
+  auto feedback = [&](int k, const std::string& stage) {
+    imagenets::CalibrateFeedback f;
+    f.sample = k;
+    f.samples = samples;
+    f.stage = stage;
+    return f;
+  };
   const int observer = exec.addObserver([&](const imagenets::RunEvent& e) {
     std::lock_guard<std::mutex> lock(mutex);
     const bool in_sample = e.block.rfind("samples/", 0) == 0 && e.block.find('/', 8) == std::string::npos;
     if (e.kind == imagenets::RunEventKind::BlockStarted && progress && (in_sample || e.block == "solve")) {
       // Stage: the block that started (e.g. samples/move_arm, samples/grab, samples/left_detection, solve).
-      progress(e.block == "solve" ? samples : done + 1, samples, e.block);
+      progress(feedback(e.block == "solve" ? done : done + 1, e.block));
     } else if (e.kind == imagenets::RunEventKind::BlockFinished && e.block == "samples/left_detection") {
       left_ms = e.stats.last_ms;
     } else if (e.kind == imagenets::RunEventKind::BlockFinished && e.block == "samples/right_detection") {
@@ -401,6 +476,19 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
       done = e.index;
       *detection_time += std::max(left_ms, right_ms) / 1000.0;  // both images in parallel
       left_ms = right_ms = 0;
+      if (until && progress && e.index >= requested && e.index < samples &&
+          until->stats("solve").status == imagenets::BlockStatus::Ok) {
+        // The until net has just solved the samples so far: how certain the fixed point is now.
+        if (const auto so_far = until->output<imagenets::CalibrationResult>("result.value")) {
+          const Result r = fromMsg(*so_far);
+          auto f = feedback(e.index, "uncertainty");
+          f.uncertainty = r.has_covariance ? 3 * r.sigmaTranslation() : 0.0;
+          f.uncertainty_rotation = r.has_covariance ? 3 * r.sigmaRotation() : 0.0;
+          progress(f);
+          ROS_INFO("after %d poses: 3 sigma %.3f mm / %.4f deg", e.index, 1000 * f.uncertainty,
+                   f.uncertainty_rotation * 180 / M_PI);
+        }
+      }
       const imagenets::Executor* sample_net = inner ? inner->innerExecutor() : nullptr;
       if (!sample_net || !e.message.empty()) return;
       StereoPair pair;

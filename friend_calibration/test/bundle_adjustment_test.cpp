@@ -265,6 +265,69 @@ TEST_F(BundleAdjustmentTest, OneLoopOfTwoPosesIsReportedAsLeavingTheMarkersRotat
   std::filesystem::remove_all(dir);
 }
 
+// The joint method's fallback (refineAtPixelLevel): the pixel-level fit replaces the 3D-point
+// solution only when it determines the fixed point (3 sigma below the 30 mm prior); else the
+// 3D-point solution stays, with the fit's honest (large) uncertainty. Both branches through
+// calibrate(), each checked against the two solutions computed apart on the same samples.
+struct OneLoopFallback {
+  Result calibrated, point;  // calibrate()'s result; the 3D-point joint solution alone
+  BundleAdjustment ba;       // the pixel-level fit started from it
+};
+
+OneLoopFallback solveBothWays(const BundleAdjustmentTest& t, const std::vector<Sample>& samples) {
+  FusionLimits limits;
+  limits.relative_reprojection_error = 0;  // no tightening: every step sees the same limits
+  OneLoopFallback f;
+  f.calibrated = calibrate(t.model, samples, "joint", limits, CombineOptions());
+  f.point = solveJointly(t.model, calibrate(t.model, samples, "paper", limits, CombineOptions()), limits);
+  std::vector<const Sample*> used;
+  for (int i : f.point.used) used.push_back(&f.point.samples[i]);
+  f.ba = bundleAdjust(t.model, t.cameras, t.points, used, f.point, limits.max_reprojection_error);
+  return f;
+}
+
+TEST_F(BundleAdjustmentTest, OneLoopKeepsThe3DPointSolutionWhenThePixelLevelFitLeavesTheFixedPointUndetermined) {
+  const OneLoopFallback f = solveBothWays(*this, simulate(3, 0.05, 2).samples);  // one loop: 2 poses
+  ASSERT_TRUE(f.calibrated.success) << f.calibrated.message;
+  ASSERT_TRUE(f.ba.ok) << f.ba.message;
+  EXPECT_FALSE(f.ba.determined) << "3 sigma " << 3000 * std::sqrt(f.ba.fixed_point_covariance.topLeftCorner<3, 3>().trace())
+                                << " mm";
+  // The fit did move the fixed point, so keeping the 3D-point solution is a choice, seen here.
+  const double moved = (f.ba.fixed_point.translation() - f.point.fixed_point.translation()).norm();
+  std::printf("one loop: pixel-level fit %.3f mm / %.4f deg from the 3D-point solution; 3 sigma %.1f mm\n", moved * 1000,
+              angleBetween(f.ba.fixed_point, f.point.fixed_point) / kDeg, 3000 * f.calibrated.sigmaTranslation());
+  EXPECT_GT(moved, 1e-6);
+  EXPECT_NEAR((f.calibrated.fixed_point.translation() - f.point.fixed_point.translation()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(angleBetween(f.calibrated.fixed_point, f.point.fixed_point), 0.0, 1e-12);
+  EXPECT_NEAR((f.calibrated.marker_offset.translation() - f.point.marker_offset.translation()).norm(), 0.0, 1e-12);
+  EXPECT_EQ(f.calibrated.arm_joint_offsets, f.point.arm_joint_offsets);
+  // ... with the fit's uncertainty, which says how little one loop knows.
+  ASSERT_TRUE(f.calibrated.has_covariance);
+  EXPECT_GE(3 * f.calibrated.sigmaTranslation(), 0.03);
+  EXPECT_NE(f.calibrated.message.find("the images do not determine the fixed point (too few different poses): the "
+                                      "3D-point solution is kept"),
+            std::string::npos)
+      << f.calibrated.message;
+}
+
+TEST_F(BundleAdjustmentTest, TenPosesUseThePixelLevelFitBecauseItDeterminesTheFixedPoint) {
+  const OneLoopFallback f = solveBothWays(*this, simulate(3, 0.05, 10).samples);
+  ASSERT_TRUE(f.calibrated.success) << f.calibrated.message;
+  ASSERT_TRUE(f.ba.ok) << f.ba.message;
+  EXPECT_TRUE(f.ba.determined);
+  EXPECT_GT((f.ba.fixed_point.translation() - f.point.fixed_point.translation()).norm(), 1e-6);
+  // (The same fit run twice: equal up to the solver's floating-point summation order.)
+  EXPECT_NEAR((f.calibrated.fixed_point.translation() - f.ba.fixed_point.translation()).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(angleBetween(f.calibrated.fixed_point, f.ba.fixed_point), 0.0, 1e-9);
+  EXPECT_NEAR((f.calibrated.marker_offset.translation() - f.ba.marker_offset.translation()).norm(), 0.0, 1e-9);
+  ASSERT_EQ(f.calibrated.arm_joint_offsets.size(), f.ba.arm_joint_offsets.size());
+  for (size_t j = 0; j < f.ba.arm_joint_offsets.size(); ++j) {
+    EXPECT_NEAR(f.calibrated.arm_joint_offsets[j], f.ba.arm_joint_offsets[j], 1e-9) << "arm joint " << j + 1;
+  }
+  EXPECT_LT(3 * f.calibrated.sigmaTranslation(), 0.03);
+  EXPECT_EQ(f.calibrated.message.find("3D-point solution is kept"), std::string::npos) << f.calibrated.message;
+}
+
 TEST_F(BundleAdjustmentTest, AGoodCalibrationIsNotOverwrittenByOneWithAnUncertaintyAboveTheLimit) {
   const Result good = calibrate(model, simulate(3, 0.05).samples, "joint", FusionLimits(), CombineOptions());
   // Ten times the pixel noise (the detection gates opened to let it through).

@@ -18,9 +18,13 @@ bool setIn(Executor& exec, const std::string& prefix, const std::string& propert
     }
     // A sub-net's blocks are set in its own executor (built when the outer net was).
     auto* inner = dynamic_cast<InnerNet*>(node.block.get());
-    Executor* inner_exec = inner ? inner->innerExecutor() : nullptr;
-    if (inner_exec && setIn(*inner_exec, prefix + node.name + "/", property, text, accept, set) &&
-        !node.block->propertySpecs().empty()) {
+    if (!inner) continue;
+    bool changed = false;
+    for (const InnerExecutorRef& net : inner->innerExecutors()) {
+      const std::string path = prefix + node.name + "/" + (net.path.empty() ? "" : net.path + "/");
+      changed = setIn(*net.executor, path, property, text, accept, set) || changed;
+    }
+    if (changed && !node.block->propertySpecs().empty()) {
       // The outer executor caches the sub-net block's outputs: one of its properties set again to
       // its own value marks it out of date, so the next run re-runs the changed sub-net.
       const std::string& any = node.block->propertySpecs().front().name();

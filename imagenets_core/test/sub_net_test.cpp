@@ -1,8 +1,10 @@
 // Hierarchy (paper 3.5): nets as blocks, nested, in parallel, repeated.
 #include <fstream>
+#include <mutex>
 
 #include <geometry_msgs/PoseArray.h>
 #include <gtest/gtest.h>
+#include <std_msgs/Bool.h>
 #include <std_msgs/Float64.h>
 #include <std_msgs/Float64MultiArray.h>
 #include <std_msgs/Int32.h>
@@ -231,6 +233,124 @@ links: [k.value -> out.value]
   }
 }
 
+// Repeat until: past N repetitions one more at a time, until the until net says done.
+TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
+  // The repeated net hands out its index; `target` is an input it does not use itself.
+  write("index_target.yaml", R"(
+blocks:
+  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
+links: [k.value -> out.value]
+)");
+  // Done when the indices so far add up to the target: fed from the block's input `target` and
+  // the collection `index_all` of the repetitions so far.
+  write("sum_reached.yaml", R"(
+blocks:
+  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  sum: {type: test/SumAtLeast}
+  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reached -> done.value]
+)");
+  write("until.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, repeat: 2, "
+                      "repetition_input: k, until_net: sum_reached.yaml, max_repeat: 8}}\n");
+  auto e = loadFile("until.yaml");
+  std::mutex mutex;
+  std::vector<std::string> events;
+  e->addObserver([&](const RunEvent& ev) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (ev.kind == RunEventKind::Repetition) events.push_back("repetition " + std::to_string(ev.index) + " of " +
+                                                              std::to_string(ev.count));
+    if (ev.kind == RunEventKind::BlockFinished && ev.block == "loop/until/sum") events.push_back("until");
+  });
+  auto target = [&](double t) {
+    auto v = boost::make_shared<std_msgs::Float64>();
+    v->data = t;
+    e->setInput("loop.target", boost::shared_ptr<const std_msgs::Float64>(v));
+  };
+  // 0+1+2+3+4 = 10: asked after 2, 3, 4 and 5 repetitions; the until net's events are nested.
+  target(10);
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(events, (std::vector<std::string>{"repetition 1 of 8", "until", "repetition 2 of 8", "until",
+                                              "repetition 3 of 8", "until", "repetition 4 of 8", "until",
+                                              "repetition 5 of 8"}));
+  // Done at once: the N repetitions always run.
+  target(0);
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1}));
+  // Never done: max_repeat ends it (the until net is not asked after the last one).
+  target(1000);
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data.size(), 8u);
+  e->setProperty("loop", "max_repeat", 1);
+  const RunReport below = e->run();
+  ASSERT_EQ(below.failed.size(), 1u);
+  EXPECT_NE(below.failed[0].find("property 'max_repeat': 1 is below the 2 repetitions"), std::string::npos)
+      << below.failed[0];
+
+  // From inputs, as the calibration plan gives them.
+  write("until_counted.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, "
+                              "repetition_input: k, repeat_from_input: true, until_net: sum_reached.yaml}}\n");
+  auto counted = loadFile("until_counted.yaml");
+  auto number = [](int n) {
+    auto v = boost::make_shared<std_msgs::Int32>();
+    v->data = n;
+    return boost::shared_ptr<const std_msgs::Int32>(v);
+  };
+  auto six = boost::make_shared<std_msgs::Float64>();
+  six->data = 6;
+  counted->setInput("loop.target", boost::shared_ptr<const std_msgs::Float64>(six));
+  counted->setInput("loop.repeat", number(1));
+  counted->setInput("loop.max_repeat", number(3));
+  ASSERT_TRUE(counted->run().ok());  // 0+1+2 = 3 < 6: stopped by max_repeat
+  EXPECT_EQ(counted->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1, 2}));
+  counted->setInput("loop.max_repeat", number(10));
+  ASSERT_TRUE(counted->run().ok());  // 0+1+2+3 = 6
+  EXPECT_EQ(counted->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1, 2, 3}));
+}
+
+TEST(SubNet, AnUntilNetWhosePortsDoNotFitIsNamed) {
+  write("index_only.yaml", R"(
+blocks:
+  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
+links: [k.value -> out.value]
+)");
+  write("until_wants_more.yaml", R"(
+blocks:
+  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  sum: {type: test/SumAtLeast}
+  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reached -> done.value]
+)");
+  write("until_no_done.yaml", R"(
+blocks:
+  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  stop: {type: imagenets/ExecutorOutput, properties: {port: stop, type: std_msgs/Float64MultiArray}}
+links: [index_all.value -> stop.value]
+)");
+  auto error = [](const std::string& until) {
+    write("until_bad.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_only.yaml, "
+                            "repetition_input: k, until_net: " + until + ", max_repeat: 3}}\n");
+    try {
+      Net::loadFile(dir() + "/until_bad.yaml");
+    } catch (const NetError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string unmatched = error("until_wants_more.yaml");
+  EXPECT_NE(unmatched.find("property 'until_net': input 'target' of"), std::string::npos) << unmatched;
+  EXPECT_NE(unmatched.find("until_wants_more.yaml"), std::string::npos) << unmatched;
+  EXPECT_NE(unmatched.find("(have: index_all)"), std::string::npos) << unmatched;
+  const std::string no_done = error("until_no_done.yaml");
+  EXPECT_NE(no_done.find("property 'until_net'"), std::string::npos) << no_done;
+  EXPECT_NE(no_done.find("has no output 'done'"), std::string::npos) << no_done;
+}
+
 TEST(SubNet, WithEnoughAllowedFailuresAFailedRunIsAResultNotAnError) {
   write("always_fails.yaml", R"(
 blocks:
@@ -307,6 +427,36 @@ links: [c.value -> sub.x, sub.y -> after.in]
   // A filter on the property's declaration: here only integer properties named `gain` (none).
   EXPECT_TRUE(setPropertyInNetTree(*e, "gain", "7", [](const PropertySpec& p) { return p.kind() == PropertyKind::Int; })
                   .empty());
+  // A sub-net's until net is part of the tree: its threshold here is the target times `gain`.
+  write("index_only.yaml", R"(
+blocks:
+  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
+links: [k.value -> out.value]
+)");
+  write("scaled_sum_reached.yaml", R"(
+blocks:
+  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  scale: {type: test/Scale}
+  sum: {type: test/SumAtLeast}
+  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+links: [index_all.value -> sum.values, target.value -> scale.in, scale.out -> sum.threshold, sum.reached -> done.value]
+)");
+  write("until_tree.yaml", R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 10}}
+  loop: {type: imagenets/Executor, properties: {net: index_only.yaml, repeat: 2, repetition_input: k,
+                                                until_net: scaled_sum_reached.yaml, max_repeat: 8}}
+links: [c.value -> loop.target]
+)");
+  auto u = loadFile("until_tree.yaml");
+  ASSERT_TRUE(u->run().ok());
+  EXPECT_EQ(u->output<std_msgs::Float64MultiArray>("loop.index_all")->data.size(), 5u);  // 0+1+2+3+4 >= 10
+  EXPECT_EQ(setPropertyInNetTree(*u, "gain", "0.5"), (std::vector<std::string>{"loop/until/scale"}));
+  ASSERT_TRUE(u->run().ok());
+  EXPECT_EQ(u->output<std_msgs::Float64MultiArray>("loop.index_all")->data.size(), 4u);  // 0+1+2+3 >= 5
   // A value that is not valid for a block names the block and the property.
   try {
     setPropertyInNetTree(*e, "gain", "not a number");

@@ -4,7 +4,11 @@
 #include <condition_variable>
 #include <thread>
 
+#include <numeric>
+
+#include <std_msgs/Bool.h>
 #include <std_msgs/Float64.h>
+#include <std_msgs/Float64MultiArray.h>
 
 #include "imagenets/registry.h"
 
@@ -142,6 +146,24 @@ class Counter : public Block {
   std::atomic<int> runs_{0};  // test-only state across runs
 };
 
+// Whether the numbers add up to at least `threshold`: a stop condition (a sub-net's until net).
+class SumAtLeast : public Block {
+ public:
+  SumAtLeast() {
+    addInput<std_msgs::Float64MultiArray>("values", "numbers");
+    addInput<std_msgs::Float64>("threshold", "the sum to reach");
+    addOutput<std_msgs::Bool>("reached", "sum(values) >= threshold");
+  }
+  void process(Context& ctx) override {
+    count(ctx);
+    const auto values = ctx.input<std_msgs::Float64MultiArray>("values");
+    auto reached = boost::make_shared<std_msgs::Bool>();
+    reached->data = std::accumulate(values->data.begin(), values->data.end(), 0.0) >=
+                    ctx.input<std_msgs::Float64>("threshold")->data;
+    ctx.output("reached", reached);
+  }
+};
+
 }  // namespace
 
 int calls(const std::string& block_name) {
@@ -163,4 +185,5 @@ IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Scale, "test/Scale", "test", "in 
 IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Add, "test/Add", "test", "a + b");
 IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Parabola, "test/Parabola", "test", "Score with a known peak");
 IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Counter, "test/Counter", "test", "Counts its runs");
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::SumAtLeast, "test/SumAtLeast", "test", "sum(values) >= threshold");
 IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Barrier, "test/Barrier", "test", "Meets other barriers");

@@ -156,6 +156,14 @@ struct Result {
   // the true error lies within 3 of it with high probability.
   double sigmaTranslation() const { return std::sqrt(fixed_point_covariance.topLeftCorner<3, 3>().trace()); }
   double sigmaRotation() const { return std::sqrt(fixed_point_covariance.bottomRightCorner<3, 3>().trace()); }
+  // The Calibrate request's uncertainty target: whether this successful fit's 3-sigma bounds are
+  // at most `translation` (m) and `rotation` (rad); a target <= 0 is not checked; false with
+  // neither target set or without a covariance.
+  bool withinUncertaintyTarget(double translation, double rotation) const {
+    if (!success || !has_covariance || !(translation > 0 || rotation > 0)) return false;
+    return (!(translation > 0) || 3 * sigmaTranslation() <= translation) &&
+           (!(rotation > 0) || 3 * sigmaRotation() <= rotation);
+  }
 };
 
 // The paper's redundancy (4.2): the mean rotation of all sample frames and the per-axis median of

@@ -11,7 +11,8 @@
 // Interfaces (in the node's private namespace, e.g. /friend_calibration/...):
 //   ~calibrate          service imagenets/Calibrate
 //   ~calibrate_action   action imagenets/Calibrate (feedback: sample k of N and the block of the
-//                       sample net that started; cancellable)
+//                       sample net that started, and with an uncertainty target the bounds after
+//                       each pose added; cancellable)
 //   tf_static           base_frame -> pth_fixed_point (calibrated), base_frame ->
 //                       pth_fixed_point_nominal; tf: pth_fixed_point -> calibrated stereo optical
 //                       frames at the current pan/tilt (paper 4.3: extrinsics from TF)
@@ -20,7 +21,8 @@
 //                       measured (latched), with ~detections/{left,right}/camera_info beside it
 // Parameters (private): net (the calibration net file), replay_net (the sample net of replays),
 //   description, marker, calibration_file, redundancy (5), method (joint), poses_per_loop (joint
-//   method, 2), fusion/max_position_difference (m), fusion/max_angle_difference (rad),
+//   method, 2), max_poses (with an uncertainty target and no request max_poses: at most this many
+//   poses; 30), fusion/max_position_difference (m), fusion/max_angle_difference (rad),
 //   min_valid_fraction, urdf_file (the calibrated URDF written after each saved calibration;
 //   default beside calibration_file, .urdf), max_uncertainty (m, 3-sigma translation bound above which a calibration
 //   does not replace a good saved one; 0.002, 0 = off), replay (file re-solved at start-up),
@@ -57,8 +59,8 @@ class CalibrationNode {
  public:
   CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh);
 
-  // Feedback (sample, of, stage) of one run.
-  using Progress = std::function<void(int, int, const std::string&)>;
+  // Feedback of one run (sample k of N, stage; the bounds reached after a pose added for a target).
+  using Progress = std::function<void(const imagenets::CalibrateFeedback&)>;
   // One calibration (robot or replay). Never throws: failures come back with success = false.
   imagenets::Calibrate::Response run(const imagenets::Calibrate::Request& req, const Progress& progress);
   // Stops the running calibration (thread-safe; a no-op when none runs).
@@ -77,9 +79,14 @@ class CalibrationNode {
   // Loads ~net (and its replay twin); throws naming the file, block or port that is wrong.
   void loadNets(const std::string& net, const std::string& replay_net);
   // Runs `exec` (the live or the replay net) and returns its result; throws with the failure.
-  // `samples`: N for the feedback (0: unknown); fills the last stereo pair and the detection time.
-  Result runNet(imagenets::Executor& exec, const Progress& progress, int samples, StereoPair* last_pair,
+  // `samples`: N for the feedback (0: unknown; with a target the maximum); fills the last stereo
+  // pair and the detection time.
+  // `requested`: the poses taken in any case (with a target, each one after them is fed back with
+  // the bounds reached).
+  Result runNet(imagenets::Executor& exec, const Progress& progress, int samples, int requested, StereoPair* last_pair,
                 double* detection_time);
+  // The until net of the net's sample sub-net (calibration_target.yaml), or null.
+  static imagenets::Executor* untilNet(const imagenets::Executor& exec);
   void publish(const Result& result, const std::string& frame);
   std::string savePictures(const StereoPair& pair, const Sample& sample);
   void publishDetections(const StereoPair& pair, const Sample& sample);
@@ -93,6 +100,7 @@ class CalibrationNode {
   int default_redundancy_ = 5;
   std::string default_method_ = "joint";
   int poses_per_loop_ = 2;
+  int max_poses_ = 30;
   double min_valid_fraction_ = 0.5;
   FusionLimits fusion_;
 

@@ -1,6 +1,7 @@
 #include "imagenets/blocks/sub_net_block.h"
 
 #include <boost/filesystem.hpp>
+#include <std_msgs/Bool.h>
 #include <std_msgs/Int32.h>
 #include <std_msgs/String.h>
 
@@ -41,6 +42,13 @@ SubNetBlock::SubNetBlock() {
   addProperty<std::string>("repetition_input", "",
                            "inner input port (std_msgs/Int32) fed with the repetition's index 0..N-1 (not an outer port)");
   addProperty<bool>("repeat_from_input", false, "the number of repetitions comes from the input `repeat` (std_msgs/Int32)");
+  addProperty<std::string>("until_net", "",
+                           "a net run after repetition N and each one added: its std_msgs/Bool output `done` ends "
+                           "the repetitions (inputs: this block's inputs and the collections `<port>_all` so far)")
+      .path();
+  addProperty<int>("max_repeat", 0, "with `until_net`: at most this many repetitions (0 = N; the input `max_repeat` "
+                                    "when it has a value)")
+      .range(0, 100000);
 }
 
 SubNetBlock::~SubNetBlock() = default;
@@ -53,15 +61,20 @@ void SubNetBlock::configure() {
   const NetSpec* outer = LoadContext::current();
   std::vector<std::string> chain = outer ? outer->include_chain : std::vector<std::string>{};
   if (outer) chain.push_back(outer->origin);
+  auto parseIncluded = [&](const std::string& path) {
+    for (const auto& including : chain) {
+      if (canonical(including) != canonical(path)) continue;
+      std::string loop;
+      for (const auto& c : chain) loop += c + " -> ";
+      throw BlockError("net '" + path + "' includes itself: " + loop + path);
+    }
+    NetSpec included = parseNetFile(path);
+    included.include_chain = chain;
+    return included;
+  };
   NetSpec spec;
   if (!file.empty()) {
-    for (const auto& including : chain) {
-      if (canonical(including) != canonical(file)) continue;
-      std::string path;
-      for (const auto& c : chain) path += c + " -> ";
-      throw BlockError("net '" + file + "' includes itself: " + path + file);
-    }
-    spec = parseNetFile(file);
+    spec = parseIncluded(file);
   } else {
     spec = parseNetText(yaml, (outer ? outer->origin : std::string("net")) + " (net_yaml)",
                         outer ? outer->base_dir : std::string());
@@ -105,6 +118,77 @@ void SubNetBlock::configure() {
   if (property<int>("max_failures") > 0) {
     addOutput<std_msgs::String>("failure", "why the first failed repetition failed; only when one failed");
   }
+
+  // Repeat until: the until net's ports are matched by name against this block's ports.
+  until_.reset();
+  until_inputs_.clear();
+  const std::string until_file = property<std::string>("until_net");
+  if (until_file.empty()) return;
+  const NetSpec until_spec = parseIncluded(until_file);
+  until_ = std::make_unique<Executor>(Net::build(until_spec), ExecutorOptions{property<int>("threads")});
+  if (property<bool>("repeat_from_input")) {
+    addOptionalInput<std_msgs::Int32>("max_repeat", "at most this many repetitions (instead of the property)");
+  }
+  until_done_.clear();
+  for (const auto& node : until_->net().nodes()) {
+    const auto* boundary = dynamic_cast<const NetPort*>(node.block.get());
+    if (!boundary) continue;
+    std::string port = boundary->outerName();
+    if (port.empty()) port = node.name;
+    const PortType& type = boundary->type();
+    if (boundary->direction() == NetPort::Direction::Out) {
+      if (port != "done") continue;
+      if (type.name != PortType::of<std_msgs::Bool>().name) {
+        throw BlockError("property 'until_net': output 'done' of " + until_spec.origin + " is " + type.name +
+                         ", expected std_msgs/Bool");
+      }
+      until_done_ = node.name + ".value";
+      continue;
+    }
+    UntilInPort in{node.name + ".value"};
+    std::string offered;
+    for (size_t i = 0; i < inputs_.size(); ++i) {
+      if (inputs_[i].port == port) in.input = static_cast<int>(i);
+      offered += (offered.empty() ? "" : ", ") + inputs_[i].port;
+    }
+    for (size_t o = 0; o < outputs_.size(); ++o) {
+      if (!outputs_[o].collector) continue;
+      if (outputs_[o].port + "_all" == port) in.output = static_cast<int>(o);
+      offered += (offered.empty() ? "" : ", ") + outputs_[o].port + "_all";
+    }
+    if (in.input < 0 && in.output < 0) {
+      throw BlockError("property 'until_net': input '" + port + "' of " + until_spec.origin +
+                       " is neither an input of this block nor a collection of its outputs (have: " + offered + ")");
+    }
+    const PortType& fed = in.input >= 0 ? *findInput(port)->type : *outputs_[in.output].collector->collection;
+    if (fed.name != type.name) {
+      throw BlockError("property 'until_net': input '" + port + "' of " + until_spec.origin + " is " + type.name +
+                       ", but this block's '" + port + "' is " + fed.name);
+    }
+    until_inputs_.push_back(in);
+  }
+  if (until_done_.empty()) {
+    throw BlockError("property 'until_net': " + until_spec.origin +
+                     " has no output 'done' (an imagenets/ExecutorOutput with port 'done', type std_msgs/Bool)");
+  }
+}
+
+bool SubNetBlock::untilDone(const std::vector<std::vector<Value>>& results, const std::vector<Value>& inputs) {
+  for (const auto& in : until_inputs_) {
+    if (in.input >= 0) {
+      until_->setInput(in.inner, inputs[in.input]);
+    } else if (!results[in.output].empty()) {
+      until_->setInput(in.inner, outputs_[in.output].collector->collect(results[in.output]));
+    } else {
+      return false;  // no repetition has succeeded yet
+    }
+  }
+  // A failed run (its events say why) is not done: more repetitions may well help.
+  const RunReport report = until_->run();
+  if (report.cancelled) throw RunCancelled();
+  if (!report.failed.empty()) return false;
+  const auto done = until_->output<std_msgs::Bool>(until_done_);
+  return done && done->data;
 }
 
 void SubNetBlock::process(Context& ctx) {
@@ -118,11 +202,25 @@ void SubNetBlock::process(Context& ctx) {
     repeat = ctx.input<std_msgs::Int32>("repeat")->data;
     if (repeat < 1) throw BlockError("input 'repeat': " + std::to_string(repeat) + " repetitions (must be >= 1)");
   }
+  // Repeat until: past the N repetitions, one more at a time while the until net is not done.
+  int max_repeat = repeat;
+  if (until_) {
+    const auto from_input = ctx.property<bool>("repeat_from_input") ? ctx.input<std_msgs::Int32>("max_repeat") : nullptr;
+    const int limit = from_input ? from_input->data : ctx.property<int>("max_repeat");
+    if (limit != 0 || from_input) max_repeat = limit;
+    if (max_repeat < repeat) {
+      throw BlockError(std::string(from_input ? "input" : "property") + " 'max_repeat': " + std::to_string(max_repeat) +
+                       " is below the " + std::to_string(repeat) + " repetitions that run anyway");
+    }
+  }
+  std::vector<Value> input_values;
+  for (const auto& in : inputs_) input_values.push_back(ctx.inputValue(in.port));
   std::vector<std::vector<Value>> results(outputs_.size());
   std::string first_failure_message;
   std::string first_failure;
   int failures = 0;
-  for (int i = 0; i < repeat; ++i) {
+  int ran = 0;
+  for (int i = 0; i < max_repeat; ++i) {
     if (ctx.cancelled()) throw RunCancelled();
     if (!repetition_input_.empty()) {
       auto index = boost::make_shared<std_msgs::Int32>();
@@ -130,33 +228,45 @@ void SubNetBlock::process(Context& ctx) {
       executor_->setInput(repetition_input_, PortType::of<std_msgs::Int32>().wrap<std_msgs::Int32>(index));
     }
     // Every repetition re-runs the whole sub-net (sources included: a fresh image, a new move).
-    RunReport report = repeat == 1 ? executor_->run() : executor_->runAll();
+    RunReport report = max_repeat == 1 ? executor_->run() : executor_->runAll();
     if (report.cancelled) throw RunCancelled();
+    ++ran;
     RunEvent done;
     done.kind = RunEventKind::Repetition;
     done.index = i + 1;
-    done.count = repeat;
-    if (!report.failed.empty()) done.message = "failed: " + report.failed.front();
-    ctx.emit(done);
+    done.count = max_repeat;
     if (!report.failed.empty()) {
+      done.message = "failed: " + report.failed.front();
       // Its outputs may still hold the previous repetition's values: none of them is taken.
       if (++failures == 1) {
         first_failure = "repetition " + std::to_string(i + 1) + ": " + report.failed.front();
         first_failure_message = report.failed.front();
       }
-      continue;
+    } else {
+      for (size_t o = 0; o < outputs_.size(); ++o) {
+        Value v = executor_->output(outputs_[o].inner);
+        if (v) results[o].push_back(v);
+      }
     }
-    for (size_t o = 0; o < outputs_.size(); ++o) {
-      Value v = executor_->output(outputs_[o].inner);
-      if (v) results[o].push_back(v);
+    // The until net decides from repetition N on whether more are needed (not when none may follow).
+    bool enough = i + 1 >= repeat;
+    if (enough && i + 1 < max_repeat) {
+      Nesting until_nesting(*until_, RunChannel{[&ctx](RunEvent e) {
+                                                  e.block = "until/" + e.block;
+                                                  ctx.emit(e);
+                                                },
+                                                [&ctx] { return ctx.cancelled(); }});
+      enough = untilDone(results, input_values);
     }
+    ctx.emit(done);
+    if (enough) break;
   }
   // With max_failures >= the repetitions, even all of them failing leaves the block ok: it then
   // hands out only `failure` (e.g. a detection sub-net whose "not found" is a result downstream).
   const int max_failures = ctx.property<int>("max_failures");
-  if (failures > max_failures || (failures == repeat && max_failures < repeat)) {
+  if (failures > max_failures || (failures == ran && max_failures < ran)) {
     throw BlockError("sub-net " + executor_->net().origin() + ": " + std::to_string(failures) + " of " +
-                     std::to_string(repeat) + " repetitions failed (max_failures " +
+                     std::to_string(ran) + " repetitions failed (max_failures " +
                      std::to_string(ctx.property<int>("max_failures")) + "); " + first_failure);
   }
   if (failures > 0) {
@@ -169,6 +279,13 @@ void SubNetBlock::process(Context& ctx) {
     ctx.setOutput(outputs_[o].port, results[o].back());
     if (outputs_[o].collector) ctx.setOutput(outputs_[o].port + "_all", outputs_[o].collector->collect(results[o]));
   }
+}
+
+std::vector<InnerExecutorRef> SubNetBlock::innerExecutors() {
+  std::vector<InnerExecutorRef> nets;
+  if (executor_) nets.push_back({"", executor_.get()});
+  if (until_) nets.push_back({"until", until_.get()});
+  return nets;
 }
 
 const Net* SubNetBlock::subNet() const { return executor_ ? &executor_->net() : nullptr; }

@@ -8,6 +8,14 @@
 // max_failures >= N even a run whose repetitions all failed leaves the block ok (only `failure`
 // comes out). `repetition_input: PORT` feeds the inner input port PORT (std_msgs/Int32) with the
 // repetition's index 0..N-1 (pose k of N); `repeat_from_input: true` takes N from the input `repeat`.
+//
+// Repeat until: with `until_net: FILE` the repetitions go on past N, one at a time, until that net
+// says `done` or `max_repeat` ran (the input `max_repeat` when it has a value, else the property).
+// The until net runs after repetition N and after each one added; its inputs are fed by name from
+// this block's inputs (e.g. `plan`) and from the collections so far (`<port>_all`), and its
+// std_msgs/Bool output `done` stops the repetitions when true (a run of it that fails counts as not
+// done). Its run events come as "<this block>/until/<block>", before the repetition's event, so an
+// observer of that event can read the until net's outputs (untilExecutor()).
 #pragma once
 
 #include <memory>
@@ -32,7 +40,10 @@ class SubNetBlock : public Block, public InnerNet {
 
   const Net* subNet() const override;
   const Executor* innerExecutor() const override { return executor_.get(); }
-  Executor* innerExecutor() override { return executor_.get(); }
+  std::vector<InnerExecutorRef> innerExecutors() override;
+  // The until net's executor (null without `until_net`); its public API is thread-safe, so a host
+  // may read its outputs between repetitions or set its properties between runs.
+  Executor* untilExecutor() const { return until_.get(); }
 
  private:
   struct InPort {
@@ -42,7 +53,19 @@ class SubNetBlock : public Block, public InnerNet {
     std::string port, inner;
     const Collector* collector;  // null: no `<port>_all`
   };
+  struct UntilInPort {
+    std::string inner;  // "block.value" in the until net
+    int input = -1;     // index in inputs_, or
+    int output = -1;    // index in outputs_ whose collection so far feeds it
+  };
+  // Runs the until net on the repetitions so far (`inputs`: this run's input values, as inputs_);
+  // true when it says done.
+  bool untilDone(const std::vector<std::vector<Value>>& results, const std::vector<Value>& inputs);
+
   std::unique_ptr<Executor> executor_;
+  std::unique_ptr<Executor> until_;
+  std::vector<UntilInPort> until_inputs_;
+  std::string until_done_;  // "block.value" of the until net's output `done`
   std::mutex run_mutex_;
   std::vector<InPort> inputs_;
   std::vector<OutPort> outputs_;
