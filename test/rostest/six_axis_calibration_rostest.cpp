@@ -3,7 +3,7 @@
 // nothing but its description: within issue 15's targets (0.5 mm / 0.05 deg, joint method,
 // redundancy 5) against the simulator's truth, for the shipped true robot and for a random one of
 // its own 6 + 2 joint offsets; and the calibrated URDF it writes is the robot's own URDF (its link
-// names) that robot_state_publisher loads as it is.
+// names) that robot_state_publisher loads as it is; an uncertainty target is met on it too.
 #include <cmath>
 #include <cstdio>
 
@@ -132,6 +132,27 @@ TEST_F(SixAxisCalibration, ARandomTrueRobotOfSixJointsIsWithinTheTargets) {
   ASSERT_TRUE(res.success) << res.message;
   EXPECT_TRUE(res.unobservable.empty()) << res.message;
   expectWithinTargetsAndBound(errors(res, kSeed));
+}
+
+// With an uncertainty target, the sample net's until net solves the samples so far for this
+// robot too (its SolveCalibration told the node's description): poses are added until the fixed
+// point is that certain.
+TEST_F(SixAxisCalibration, AnUncertaintyTargetIsMetOnThisRobotToo) {
+  imagenets::Calibrate srv;
+  srv.request.method = "joint";
+  srv.request.poses = 4;
+  srv.request.target_uncertainty = 0.0001;  // m, 3 sigma
+  srv.request.max_poses = 16;
+  ASSERT_TRUE(ros::service::call("/friend_calibration/calibrate", srv));
+  const auto& res = srv.response;
+  std::printf("six_axis, uncertainty target 0.1 mm: %d poses taken, 3 sigma %.3f mm / %.4f deg, target %s\n",
+              res.poses_taken, res.uncertainty * 1000, res.uncertainty_rotation / kDeg, res.target_met ? "met" : "NOT met");
+  ASSERT_TRUE(res.success) << res.message;
+  EXPECT_TRUE(res.target_met) << res.message;
+  EXPECT_LE(res.uncertainty, 0.0001);
+  EXPECT_GT(res.poses_taken, 4) << "4 poses were expected to be too few for 0.1 mm: " << res.message;
+  EXPECT_LT(res.poses_taken, 16) << "the until net never said done: " << res.message;
+  expectWithinTargetsAndBound(errors(res, -1));
 }
 
 }  // namespace
