@@ -113,17 +113,18 @@ int main() {
   // The net gets the image as the node receives it (a ROS message), converted before timing.
   std::vector<sensor_msgs::ImageConstPtr> messages;
   for (const auto& v : views) messages.push_back(imagenets::blocks::toImageMsg(v.image, "mono8", v.info.header));
-  // A variant: the shipped net with its feedback changed (one net per camera, in parallel).
-  const imagenets::NetSpec shipped = imagenets::parseNetFile(CalibrationMarkerNet::defaultNetPath());
+  // A variant: the shipped net with its threshold search changed and, if given, other region
+  // margins tried (0 = the whole image); one net per camera, in parallel.
   std::vector<std::unique_ptr<CalibrationMarkerNet>> nets;
   auto variant = [&](const std::function<void(imagenets::FeedbackSpec&)>& change, bool use_prediction,
-                     double region_margin_px = 0) -> Detect {
-    imagenets::NetSpec spec = shipped;
-    for (auto& b : spec.blocks) {
-      if (b.feedback) change(*b.feedback);
-      for (auto& p : b.properties) {
-        if (p.name == "margin_px" && region_margin_px > 0) p.text = std::to_string(static_cast<int>(region_margin_px));
+                     std::vector<double> region_margins_px = {}) -> Detect {
+    imagenets::NetSpec spec = CalibrationMarkerNet::specWithSearch([&](imagenets::NetSpec& search) {
+      for (auto& b : search.blocks) {
+        if (b.feedback) change(*b.feedback);
       }
+    });
+    for (auto& b : spec.blocks) {
+      if (b.feedback && !region_margins_px.empty()) b.feedback->values = region_margins_px;
     }
     CalibrationMarkerNet* pair[2];
     for (auto*& net : pair) {
@@ -137,9 +138,11 @@ int main() {
   };
   auto always_sweep = [](imagenets::FeedbackSpec& f) { f.good_enough.reset(); };
   std::vector<Variant> variants;
-  variants.push_back({"calibration default (Otsu first, stop if good)", variant([](imagenets::FeedbackSpec&) {}, true)});
-  // The region around the nominal prediction, wide enough for a head mount 6 deg off (about 150 px).
-  variants.push_back({"calibration default, region margin 300 px", variant([](imagenets::FeedbackSpec&) {}, true, 300)});
+  const auto unchanged = [](imagenets::FeedbackSpec&) {};
+  variants.push_back({"calibration default (Otsu first, stop if good)", variant(unchanged, true)});
+  // Its region: 120 px around the prediction, the whole image only where that misses the marker.
+  variants.push_back({"calibration default, region margin 300 px", variant(unchanged, true, {300})});
+  variants.push_back({"calibration default, always the whole image", variant(unchanged, true, {0})});
   variants.push_back({"always the coarse-to-fine sweep", variant(always_sweep, true)});
   // Candidates given as a list, tried in order, no first guess, no early stop.
   auto only = [](std::vector<double> values) {

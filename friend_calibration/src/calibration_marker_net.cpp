@@ -12,12 +12,27 @@
 #include "imagenets/vision/frames.h"
 #include "imagenets/vision/marker_msgs.h"
 #include "imagenets/executor.h"
+#include "imagenets/net_writer.h"
 
 namespace friend_calibration {
 
 std::string CalibrationMarkerNet::defaultNetPath() {
   const std::string desc = robot_description::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
   return desc.substr(0, desc.size() - std::string("friend/robot.yaml").size()) + "nets/calibration_marker_detection.yaml";
+}
+
+imagenets::NetSpec CalibrationMarkerNet::specWithSearch(const std::function<void(imagenets::NetSpec&)>& edit_search) {
+  imagenets::NetSpec spec = imagenets::parseNetFile(defaultNetPath());
+  for (auto& b : spec.blocks) {
+    for (auto& p : b.properties) {
+      if (b.type != "imagenets/Executor" || p.name != "net") continue;
+      imagenets::NetSpec search = imagenets::parseNetFile(spec.base_dir + "/" + p.text);
+      edit_search(search);
+      p.name = "net_yaml";
+      p.text = imagenets::writeNetText(search);
+    }
+  }
+  return spec;
 }
 
 CalibrationMarkerNet::CalibrationMarkerNet(const std::string& net_path, int threads) {
@@ -47,29 +62,36 @@ MarkerObservation CalibrationMarkerNet::detect(const sensor_msgs::ImageConstPtr&
   } else {
     executor_->setInput("predicted_pose.value", imagenets::Value());
   }
-  // A marker that is not there is no error (no threshold gives a score); a block that fails, even
-  // inside the feedback's trials (e.g. an unreadable marker file), is.
+  // A marker that is not there is no error (no region and threshold give a score); a block that
+  // fails, even inside the feedback's trials (e.g. the region for an image of another size), is.
+  // (The sub-net's blocks fail only on their configuration, which loading the net checks.)
   const auto& nodes = executor_->net().nodes();
   std::vector<size_t> failures_before;
   for (const auto& n : nodes) failures_before.push_back(executor_->stats(n.name).failures);
   const imagenets::RunReport report = executor_->run();
-  const auto detection = executor_->output<imagenets::MarkerDetection>("detector.detection");
-  const auto trace = lastTrace();
+  const auto region = lastRegionTrace();
+  const bool not_found = region && !region->found;
   std::string message;
-  if (!report.ok() && !(trace && !trace->found)) {
-    for (const auto& f : report.failed) message += (message.empty() ? "" : "; ") + f;
-  }
   for (size_t i = 0; i < nodes.size() && message.empty(); ++i) {
     const auto stats = executor_->stats(nodes[i].name);
     if (stats.failures > failures_before[i]) message = "block '" + nodes[i].name + "': " + stats.last_error;
   }
+  if (message.empty() && !report.ok() && !not_found) {
+    for (const auto& f : report.failed) message += (message.empty() ? "" : "; ") + f;
+  }
   if (!message.empty()) throw std::invalid_argument(executor_->net().origin() + ": " + message);
-  return observationOf(detection.get(), trace.get(),
+  // (Downstream of the failed region search nothing ran: its outputs may be the previous run's.)
+  if (not_found) return observationOf(nullptr, nullptr, report.failed.front());
+  return observationOf(executor_->output<imagenets::MarkerDetection>("detection.value").get(), lastTrace().get(),
                        report.ok() ? "marker lost when its corners were refined" : report.failed.front());
 }
 
+boost::shared_ptr<const imagenets::FeedbackTrace> CalibrationMarkerNet::lastRegionTrace() const {
+  return executor_->output<imagenets::FeedbackTrace>("region.feedback_trace");
+}
+
 boost::shared_ptr<const imagenets::FeedbackTrace> CalibrationMarkerNet::lastTrace() const {
-  return executor_->output<imagenets::FeedbackTrace>("threshold.feedback_trace");
+  return executor_->output<imagenets::FeedbackTrace>("feedback_trace.value");
 }
 
 }  // namespace friend_calibration

@@ -42,6 +42,12 @@ class SquareMarkerDetector : public Block {
                       "fit a blurred-edge model to every pixel along each outer edge (dim, noisy, blurred images)");
   }
 
+  // An unreadable marker file is a load error naming the block, not a marker never found (the
+  // detector often runs inside feedback trials, whose failures only mean "no score").
+  void configure() override {
+    if (!property<std::string>("marker").empty()) loadMarker(property<std::string>("marker"));
+  }
+
   void process(Context& ctx) override {
     std_msgs::Header header;
     const cv::Mat binary = inputImage(ctx, "image", {"mono8"});
@@ -51,12 +57,7 @@ class SquareMarkerDetector : public Block {
     if (binary.size() != gray.size()) throw BlockError("input 'image': size differs from input 'gray'");
     const std::string path = ctx.property<std::string>("marker");
     if (path.empty()) throw BlockError("property 'marker': no marker file set");
-    std::shared_ptr<const marker::MarkerDescription> desc;
-    try {
-      desc = marker::MarkerDescription::loadCached(path);
-    } catch (const std::exception& e) {
-      throw BlockError(std::string("property 'marker': ") + e.what());
-    }
+    const std::shared_ptr<const marker::MarkerDescription> desc = loadMarker(path);
     marker::DetectorOptions options;
     options.min_confidence = ctx.property<double>("min_confidence");
     options.refine_passes = ctx.property<int>("refine_passes");
@@ -75,6 +76,15 @@ class SquareMarkerDetector : public Block {
       auto error = boost::make_shared<std_msgs::Float64>();
       error->data = d.reprojection_error;
       ctx.output("reprojection_error", error);
+    }
+  }
+
+ private:
+  static std::shared_ptr<const marker::MarkerDescription> loadMarker(const std::string& path) {
+    try {
+      return marker::MarkerDescription::loadCached(path);
+    } catch (const std::exception& e) {
+      throw BlockError(std::string("property 'marker': ") + e.what());
     }
   }
 };

@@ -29,9 +29,11 @@ const char* eventName(RunEventKind kind) {
 void BlockStats::record(BlockStatus new_status, const std::string& new_message, double ms, bool processed) {
   status = new_status;
   message = new_message;
-  if (status == BlockStatus::Failed) {
+  // last_error goes with `failures`: what process() said, not a verdict about the block (e.g. a
+  // feedback's "no valid candidate" after trials that failed keeps the trials' reason).
+  if (status == BlockStatus::Failed && processed) {
     last_error = message;
-    if (processed) ++failures;
+    ++failures;
   }
   if (processed) {
     ++runs;

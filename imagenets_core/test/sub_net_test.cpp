@@ -54,6 +54,39 @@ links: [c.value -> sub.x, sub.y -> after.in]
   EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("after.out")->data, 7.0);
 }
 
+TEST(SubNet, AnOptionalInputMayStayWithoutAValue) {
+  write("add.yaml", R"(
+blocks:
+  a: {type: imagenets/ExecutorInput, properties: {port: a, type: std_msgs/Float64}}
+  b: {type: imagenets/ExecutorInput, properties: {port: b, type: std_msgs/Float64, optional: true}}
+  add: {type: test/Add}
+  sum: {type: imagenets/ExecutorOutput, properties: {port: sum, type: std_msgs/Float64}}
+links: [a.value -> add.a, b.value -> add.b, add.sum -> sum.value]
+)");
+  write("outer_optional.yaml", R"(
+blocks:
+  sub: {type: imagenets/Executor, properties: {net: add.yaml}}
+)");
+  auto e = loadFile("outer_optional.yaml");
+  const auto number = [](double v) {
+    auto m = boost::make_shared<std_msgs::Float64>();
+    m->data = v;
+    return PortType::of<std_msgs::Float64>().wrap<std_msgs::Float64>(m);
+  };
+  // Without `a` (required) the block does not run; without `b` (optional) it does.
+  e->setInput("sub.b", number(5));
+  const RunReport without_a = e->run();
+  ASSERT_EQ(without_a.not_run.size(), 1u);
+  EXPECT_NE(without_a.not_run.front().find("input 'a' has no value"), std::string::npos) << without_a.not_run.front();
+  e->setInput("sub.a", number(2));
+  e->setInput("sub.b", Value());
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("sub.sum")->data, 2.0);
+  e->setInput("sub.b", number(5));
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("sub.sum")->data, 7.0);
+}
+
 TEST(SubNet, OuterLinksAreTypeChecked) {
   write("double.yaml", kDouble);
   write("bad_outer.yaml", R"(
@@ -193,13 +226,16 @@ CollectorRegistration<std_msgs::Int32, std_msgs::Float64MultiArray> indices(
       return all;
     });
 
-TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
-  write("index.yaml", R"(
+// A net that hands out the index its input `k` is told.
+const char* kIndex = R"(
 blocks:
   k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
   out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
 links: [k.value -> out.value]
-)");
+)";
+
+TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
+  write("index.yaml", kIndex);
   write("indexed.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, repeat: 4, "
                         "repetition_input: k}}\n");
   auto e = loadFile("indexed.yaml");
@@ -233,6 +269,16 @@ links: [k.value -> out.value]
   }
 }
 
+// An until net: done when the indices so far (`index_all`) add up to the input `target`.
+const char* kSumReached = R"(
+blocks:
+  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  sum: {type: test/SumAtLeast}
+  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reached -> done.value]
+)";
+
 // Repeat until: past N repetitions one more at a time, until the until net says done.
 TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   // The repeated net hands out its index; `target` is an input it does not use itself.
@@ -243,16 +289,8 @@ blocks:
   out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
 links: [k.value -> out.value]
 )");
-  // Done when the indices so far add up to the target: fed from the block's input `target` and
-  // the collection `index_all` of the repetitions so far.
-  write("sum_reached.yaml", R"(
-blocks:
-  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
-  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
-  sum: {type: test/SumAtLeast}
-  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
-links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reached -> done.value]
-)");
+  // Its until net is fed from the block's input `target` and the collection `index_all` so far.
+  write("sum_reached.yaml", kSumReached);
   write("until.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, repeat: 2, "
                       "repetition_input: k, until_net: sum_reached.yaml, max_repeat: 8}}\n");
   auto e = loadFile("until.yaml");
@@ -312,20 +350,8 @@ links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reache
 }
 
 TEST(SubNet, AnUntilNetWhosePortsDoNotFitIsNamed) {
-  write("index_only.yaml", R"(
-blocks:
-  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
-links: [k.value -> out.value]
-)");
-  write("until_wants_more.yaml", R"(
-blocks:
-  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
-  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
-  sum: {type: test/SumAtLeast}
-  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
-links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reached -> done.value]
-)");
+  write("index.yaml", kIndex);
+  write("sum_reached.yaml", kSumReached);  // wants `target`, which this block does not have
   write("until_no_done.yaml", R"(
 blocks:
   index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
@@ -333,7 +359,7 @@ blocks:
 links: [index_all.value -> stop.value]
 )");
   auto error = [](const std::string& until) {
-    write("until_bad.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_only.yaml, "
+    write("until_bad.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, "
                             "repetition_input: k, until_net: " + until + ", max_repeat: 3}}\n");
     try {
       Net::loadFile(dir() + "/until_bad.yaml");
@@ -342,9 +368,9 @@ links: [index_all.value -> stop.value]
     }
     return std::string("no error");
   };
-  const std::string unmatched = error("until_wants_more.yaml");
+  const std::string unmatched = error("sum_reached.yaml");
   EXPECT_NE(unmatched.find("property 'until_net': input 'target' of"), std::string::npos) << unmatched;
-  EXPECT_NE(unmatched.find("until_wants_more.yaml"), std::string::npos) << unmatched;
+  EXPECT_NE(unmatched.find("sum_reached.yaml"), std::string::npos) << unmatched;
   EXPECT_NE(unmatched.find("(have: index_all)"), std::string::npos) << unmatched;
   const std::string no_done = error("until_no_done.yaml");
   EXPECT_NE(no_done.find("property 'until_net'"), std::string::npos) << no_done;

@@ -252,10 +252,11 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
           calibration_net->setInput("predicted_pose.value", geometry_msgs::PoseStampedConstPtr(predicted));
           const RunReport report = calibration_net->run();
           r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-          const auto trace = calibration_net->output<FeedbackTrace>("threshold.feedback_trace");
-          const auto detection = calibration_net->output<imagenets::MarkerDetection>("detector.detection");
-          // No threshold of the search found it: "no valid candidate", not an error.
-          if (!report.ok() && !(trace && !trace->found)) {
+          const auto region = calibration_net->output<FeedbackTrace>("region.feedback_trace");
+          const auto trace = calibration_net->output<FeedbackTrace>("feedback_trace.value");
+          const auto detection = calibration_net->output<imagenets::MarkerDetection>("detection.value");
+          // No region and threshold of the search found it: "no valid candidate", not an error.
+          if (!report.ok() && !(region && !region->found)) {
             throw std::runtime_error(config.calibration_net + ": " + report.failed.front());
           }
           r.found = report.ok() && detection && detection->found;

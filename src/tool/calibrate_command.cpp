@@ -14,14 +14,20 @@ namespace tool {
 namespace {
 
 int calibrate(const Args& args) {
-  int redundancy = 5, poses = 0;
+  int redundancy = 5, poses = 0, max_poses = 0;
   std::string method;
-  double timeout = 30;
+  double timeout = 30, target_mm = 0, target_deg = 0;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--redundancy") {
       redundancy = intValue(args, i);
     } else if (args[i] == "--poses") {
       poses = intValue(args, i);
+    } else if (args[i] == "--target-mm") {
+      target_mm = doubleValue(args, i);
+    } else if (args[i] == "--target-deg") {
+      target_deg = doubleValue(args, i);
+    } else if (args[i] == "--max-poses") {
+      max_poses = intValue(args, i);
     } else if (args[i] == "--method") {
       method = flagValue(args, i);
     } else if (args[i] == "--wait") {
@@ -32,7 +38,15 @@ int calibrate(const Args& args) {
   }
   if (poses < 0) throw UsageError("--poses must be >= 0");
   CalibrationClient client("imagenets_calibrate", timeout);
-  const CalibrationRun run = client.calibrate(redundancy, method, poses);
+  imagenets::Calibrate::Request request;
+  request.redundancy = redundancy;
+  request.method = method;
+  request.poses = poses;
+  // The node names a bad value (negative target, ...) in its answer.
+  request.target_uncertainty = target_mm / 1000;
+  request.target_uncertainty_rotation = target_deg * M_PI / 180;
+  request.max_poses = max_poses;
+  const CalibrationRun run = client.calibrate(request);
   const auto& r = run.response;
   std::printf("%s: %s\n", r.success ? "calibrated" : "FAILED", r.message.c_str());
   if (!r.success) return 1;
@@ -55,6 +69,10 @@ int calibrate(const Args& args) {
     std::printf("observability: condition number %.3g; %s\n", r.condition_number,
                 names.empty() ? "every estimated parameter observable" : ("not observable from these poses: " + names).c_str());
   }
+  if (target_mm > 0 || target_deg > 0) {
+    std::printf("uncertainty target (%.3f mm, %.4f deg; 0 = none) %s after %d poses\n", target_mm, target_deg,
+                r.target_met ? "met" : "NOT met", r.poses_taken);
+  }
   std::printf("time: %.3f s compute, %.2f s with motion\n", r.compute_time, r.total_time);
   if (run.have_truth) {
     std::printf("error against the simulator's true head mount: %.3f mm, %.4f deg\n", run.error_mm, run.error_deg);
@@ -72,8 +90,10 @@ int calibrate(const Args& args) {
 
 }  // namespace
 
-IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--poses N] [--method paper|joint] [--wait S]",
-                       "trigger the running friend_calibration node; print the fixed point (and its error in simulation)",
+IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--poses N] [--method paper|joint] [--target-mm MM] [--target-deg DEG] "
+                       "[--max-poses N] [--wait S]",
+                       "trigger the running friend_calibration node; print the fixed point (and its error in simulation); "
+                       "--target-mm/--target-deg: more poses until the 3-sigma bound is within",
                        calibrate);
 
 }  // namespace tool

@@ -83,11 +83,17 @@ std::string CalibrationClient::setTrueRobot(int seed, double magnitude) {
 void CalibrationClient::setSimParam(const std::string& name, double value) { ros::param::set("/friend_sim/" + name, value); }
 
 CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& method, int poses) {
+  imagenets::Calibrate::Request request;
+  request.redundancy = redundancy;
+  request.method = method;
+  request.poses = poses;
+  return calibrate(request);
+}
+
+CalibrationRun CalibrationClient::calibrate(const imagenets::Calibrate::Request& request) {
   CalibrationRun run;
   imagenets::Calibrate srv;
-  srv.request.redundancy = redundancy;
-  srv.request.method = method;
-  srv.request.poses = poses;
+  srv.request = request;
   const auto start = std::chrono::steady_clock::now();
   if (!ros::service::call("/friend_calibration/calibrate", srv)) {
     throw std::runtime_error("the call of /friend_calibration/calibrate failed (node died?)");
@@ -97,9 +103,8 @@ CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& m
   const auto& q = srv.response.fixed_point.transform.rotation;
   if (q.x == 0 && q.y == 0 && q.z == 0 && q.w == 0) return run;  // a failure before any result: nothing to compare
   run.fixed_point = frames::toIsometry(srv.response.fixed_point.transform, "response fixed_point");
-  const auto& c = srv.response.fixed_point_covariance;  // row-major 6x6: translation (m), rotation (rad)
-  run.bound3_mm = 3000 * std::sqrt(std::max(0.0, c[0] + c[7] + c[14]));
-  run.bound3_deg = 3 * std::sqrt(std::max(0.0, c[21] + c[28] + c[35])) * 180 / M_PI;
+  run.bound3_mm = 1000 * srv.response.uncertainty;
+  run.bound3_deg = srv.response.uncertainty_rotation * 180 / M_PI;
   run.refused = !srv.response.success && srv.response.message.find("~max_uncertainty") != std::string::npos;
   // Ground truth (simulator only): wait briefly for fresh messages.
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(1.0);

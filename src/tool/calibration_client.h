@@ -23,8 +23,8 @@ struct CalibrationRun {
   Eigen::Isometry3d identifiable = Eigen::Isometry3d::Identity();
   double error_mm = 0, error_deg = 0, effective_error_mm = 0, effective_error_deg = 0;
   double identifiable_error_mm = 0, identifiable_error_deg = 0;
-  // The reported uncertainty of the fixed point (joint method's pixel-level fit): 3 sqrt(trace) of
-  // the covariance's translation and rotation blocks; 0 when the response carries none.
+  // The reported uncertainty of the fixed point (joint method's pixel-level fit): the response's
+  // 3-sigma bounds (3 sqrt(trace) of the covariance's translation and rotation blocks); 0 when none.
   double bound3_mm = 0, bound3_deg = 0;
   bool refused = false;  // computed, but the node kept its saved calibration (~max_uncertainty)
   double wall_time = 0;  // s, the service call
@@ -37,6 +37,8 @@ class CalibrationClient {
   ~CalibrationClient();
   // `poses` > 0: that many samples (the request's `poses`), else redundancy x the node's poses per loop.
   CalibrationRun calibrate(int redundancy, const std::string& method, int poses = 0);
+  // Any request (e.g. with an uncertainty target).
+  CalibrationRun calibrate(const imagenets::Calibrate::Request& request);
   // Simulator only: makes it run another true robot (friend_sim/set_true_robot: `seed` > 0 draws
   // the random error of true_error.yaml's magnitudes times `magnitude`). Returns its message;
   // throws with it when the simulator refuses or is not there. Later runs compare with that truth.

@@ -19,6 +19,8 @@ class NetPort {
   // The port's name on the outer block (after configure()); empty = the block's name in the net.
   virtual std::string outerName() const = 0;
   virtual const PortType& type() const = 0;
+  // An input the outer block may run without (the sub-net's blocks fed by it then get no value).
+  virtual bool optional() const { return false; }
 };
 
 // The port type a net port's `type` property names; throws PropertyError listing the known types.

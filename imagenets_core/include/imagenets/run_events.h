@@ -29,7 +29,7 @@ struct BlockStats {
   size_t failures = 0;     // process() calls that failed
   double last_ms = 0.0;
   double mean_ms = 0.0;
-  std::string last_error;  // the last failure's message, kept after later successes
+  std::string last_error;  // the last failed process() call's message, kept after later successes
 
   // Records one invocation; `processed`: process() was called (it counts as a run, timed).
   void record(BlockStatus new_status, const std::string& new_message, double ms, bool processed);

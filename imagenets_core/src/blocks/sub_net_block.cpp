@@ -102,7 +102,7 @@ void SubNetBlock::configure() {
       continue;
     }
     if (boundary->direction() == NetPort::Direction::In) {
-      addInput(port, type, "sub-net input '" + node.name + "'");
+      addInput(port, type, "sub-net input '" + node.name + "'").optional = boundary->optional();
       inputs_.push_back({port, node.name + ".value"});
     } else {
       addOutput(port, type, "sub-net output '" + node.name + "' (last repetition)");

@@ -8,6 +8,9 @@ template <NetPort::Direction D>
 SubNetPort<D>::SubNetPort() {
   addProperty<std::string>("port", "", "name of the port on the outer Executor block (default: this block's name)");
   addProperty<std::string>("type", "sensor_msgs/Image", "message type of the port, e.g. std_msgs/Float64");
+  if (D == Direction::In) {
+    addProperty<bool>("optional", false, "the outer block may run without a value here (e.g. a hint)");
+  }
 }
 
 template <NetPort::Direction D>

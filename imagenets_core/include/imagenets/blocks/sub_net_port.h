@@ -18,6 +18,7 @@ class SubNetPort : public Block, public NetPort {
   Direction direction() const override { return D; }
   std::string outerName() const override { return property<std::string>("port"); }
   const PortType& type() const override { return *inputs().front().type; }
+  bool optional() const override { return D == Direction::In && property<bool>("optional"); }
 };
 
 using SubNetInput = SubNetPort<NetPort::Direction::In>;
