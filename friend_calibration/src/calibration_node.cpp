@@ -21,6 +21,7 @@
 #include "imagenets/vision/frames.h"
 #include "imagenets/blocks/sub_net_block.h"
 #include "imagenets/inner_net.h"
+#include "imagenets/net_wide_property.h"
 #include "robot_description/joint_state.h"
 
 namespace friend_calibration {
@@ -236,6 +237,14 @@ void CalibrationNode::loadNets(const std::string& net, const std::string& replay
   };
   live_ = build(spec);
   replay_ = build(replay_spec);
+  // The robot this node calibrates, for every block of its nets (sub-nets included) that reads a
+  // robot description from a path property `description`: their own default is FRIEND's.
+  const std::string description = boost::filesystem::absolute(model_.description().source).string();
+  for (imagenets::Executor* exec : {live_.get(), replay_.get()}) {
+    const auto set = imagenets::setPropertyInNetTree(*exec, "description", description,
+                                                     [](const imagenets::PropertySpec& p) { return p.isPath(); });
+    ROS_DEBUG("%s: description %s set on %zu blocks", exec->net().origin().c_str(), description.c_str(), set.size());
+  }
 }
 
 imagenets::Executor* CalibrationNode::untilNet(const imagenets::Executor& exec) {
