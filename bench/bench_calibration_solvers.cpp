@@ -25,7 +25,7 @@ int main() {
   const std::string root = desc_path.substr(0, desc_path.size() - std::string("config/friend/robot.yaml").size());
   const auto nominal_desc = robot_description::loadRobotDescription(desc_path);
   const RobotModel model(nominal_desc);
-  const auto error = friend_hw_sim::loadTrueError(root + "config/friend/true_error.yaml");
+  const auto error = friend_hw_sim::loadTrueError(root + "config/friend/true_error.yaml", nominal_desc);
   const RobotModel truth(friend_hw_sim::applyTrueError(nominal_desc, error));
   const Eigen::Isometry3d effective = friend_hw_sim::effectiveHeadBase(nominal_desc, error);
   // What images can determine at all: arm joint 1's zero offset folded in as well.

@@ -23,7 +23,7 @@ int main() {
   const std::string desc_path = defaultRobotDescriptionPath();
   const std::string root = desc_path.substr(0, desc_path.size() - std::string("config/friend/robot.yaml").size());
   const auto nominal = loadRobotDescription(desc_path);
-  const RobotModel truth(applyTrueError(nominal, loadTrueError(root + "config/friend/true_error.yaml")));
+  const RobotModel truth(applyTrueError(nominal, loadTrueError(root + "config/friend/true_error.yaml", nominal)));
   const WorldScene world = loadWorldScene(root + "config/friend/scene.yaml");
   const auto marker_desc = imagenets::marker::MarkerDescription::load(root + "config/markers/gripper.yaml");
   const render::Plane marker = imagenets::marker::markerPlane(marker_desc, Eigen::Isometry3d::Identity());

@@ -21,6 +21,7 @@
 #include "imagenets/vision/frames.h"
 #include "imagenets/blocks/sub_net_block.h"
 #include "imagenets/inner_net.h"
+#include "imagenets/net_wide_property.h"
 #include "robot_description/joint_state.h"
 
 namespace friend_calibration {
@@ -36,6 +37,13 @@ std::string defaultCalibrationFile() {
   const char* home = std::getenv("HOME");
   const std::string dir = ros_home ? ros_home : std::string(home ? home : "/tmp") + "/.ros";
   return dir + "/friend_calibration/pth_fixed_point.yaml";
+}
+
+// The fixed point's 3-sigma bounds (0 without a covariance) into a response, result or feedback.
+template <class Out>
+void fillBounds(Out& out, const Result& r) {
+  out.uncertainty = r.has_covariance ? 3 * r.sigmaTranslation() : 0.0;
+  out.uncertainty_rotation = r.has_covariance ? 3 * r.sigmaRotation() : 0.0;
 }
 
 template <class Out>
@@ -54,8 +62,7 @@ void fill(Out& out, const Result& r, const std::string& base, const std::string&
   out.compute_time = r.compute_time;
   out.unobservable = r.unobservable;
   out.condition_number = r.condition_number;
-  out.uncertainty = r.has_covariance ? 3 * r.sigmaTranslation() : 0.0;
-  out.uncertainty_rotation = r.has_covariance ? 3 * r.sigmaRotation() : 0.0;
+  fillBounds(out, r);
   out.poses_taken = static_cast<int>(r.samples.size());
 }
 
@@ -230,6 +237,14 @@ void CalibrationNode::loadNets(const std::string& net, const std::string& replay
   };
   live_ = build(spec);
   replay_ = build(replay_spec);
+  // The robot this node calibrates, for every block of its nets (sub-nets included) that reads a
+  // robot description from a path property `description`: their own default is FRIEND's.
+  const std::string description = boost::filesystem::absolute(model_.description().source).string();
+  for (imagenets::Executor* exec : {live_.get(), replay_.get()}) {
+    const auto set = imagenets::setPropertyInNetTree(*exec, "description", description,
+                                                     [](const imagenets::PropertySpec& p) { return p.isPath(); });
+    ROS_DEBUG("%s: description %s set on %zu blocks", exec->net().origin().c_str(), description.c_str(), set.size());
+  }
 }
 
 imagenets::Executor* CalibrationNode::untilNet(const imagenets::Executor& exec) {
@@ -442,7 +457,9 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
   // live detection images (its inner executor is idle between repetitions).
   const int samples_node = exec.net().findNode("samples");
   const auto* inner = dynamic_cast<const imagenets::InnerNet*>(exec.net().node(samples_node).block.get());
+  // With a target: the until net (calibration_target.yaml) whose solve's result is fed back.
   const imagenets::Executor* until = samples > requested ? untilNet(exec) : nullptr;
+  if (until && (until->net().findNode("solve") < 0 || until->net().findNode("result") < 0)) until = nullptr;
   std::mutex mutex;
   int done = 0;
   double left_ms = 0, right_ms = 0;
@@ -471,10 +488,8 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
           until->stats("solve").status == imagenets::BlockStatus::Ok) {
         // The until net has just solved the samples so far: how certain the fixed point is now.
         if (const auto so_far = until->output<imagenets::CalibrationResult>("result.value")) {
-          const Result r = fromMsg(*so_far);
           auto f = feedback(e.index, "uncertainty");
-          f.uncertainty = r.has_covariance ? 3 * r.sigmaTranslation() : 0.0;
-          f.uncertainty_rotation = r.has_covariance ? 3 * r.sigmaRotation() : 0.0;
+          fillBounds(f, fromMsg(*so_far));
           progress(f);
           ROS_INFO("after %d poses: 3 sigma %.3f mm / %.4f deg", e.index, 1000 * f.uncertainty,
                    f.uncertainty_rotation * 180 / M_PI);

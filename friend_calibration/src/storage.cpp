@@ -17,7 +17,7 @@
 #include <boost/crc.hpp>
 #include <yaml-cpp/yaml.h>
 
-#include "robot_description/urdf_generator.h"
+#include "robot_description/urdf_writer.h"
 
 namespace friend_calibration {
 namespace fs = std::filesystem;
@@ -320,12 +320,13 @@ std::string calibratedUrdf(const RobotModel& nominal, const StoredCalibration& c
     note << "xyz [" << t.translation().x() << " " << t.translation().y() << " " << t.translation().z() << "] m, rpy ["
          << rpy.x() << " " << rpy.y() << " " << rpy.z() << "] deg";
   };
+  // The joints as the written URDF names them (the robot's own URDF, or the generated one).
+  const robot_description::UrdfJoint mount = robot_description::urdfChainMountJoint(d, d.head);
   note << "Calibrated (" << r.method << " method, " << (c.created.empty() ? utcStamp(true) : c.created)
-       << ") by friend_calibration_node" << (c.file.empty() ? "" : " into " + c.file) << ":\n  joint "
-       << d.head.link_prefix << "0_mount (" << d.base_frame << " -> " << d.head.link_prefix << "0, the calibrated "
-       << c.child_frame << "): ";
+       << ") by friend_calibration_node" << (c.file.empty() ? "" : " into " + c.file) << ":\n  joint " << mount.name
+       << " (" << mount.parent << " -> " << mount.child << ", the calibrated " << c.child_frame << "): ";
   frame(r.fixed_point);
-  note << "\n  joint " << d.marker.frame << "_joint (marker offset): ";
+  note << "\n  joint " << robot_description::urdfFixedJoint(d, d.marker.frame).name << " (marker offset): ";
   frame(r.marker_offset);
   note << "\n  joint zero offsets, folded into the joints' origins (robot_state_publisher ignores <calibration>):";
   bool any = false;
@@ -337,7 +338,7 @@ std::string calibratedUrdf(const RobotModel& nominal, const StoredCalibration& c
     }
   }
   if (!any) note << " none";
-  return robot_description::generateUrdf(calibrated.description(), "friend", note.str());
+  return robot_description::writeUrdf(d, calibrated.description(), "friend", note.str());
 }
 
 void saveCalibratedUrdf(const RobotModel& nominal, const StoredCalibration& c, const std::string& path) {

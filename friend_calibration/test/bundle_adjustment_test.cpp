@@ -73,7 +73,7 @@ struct BundleAdjustmentTest : ::testing::Test {
   // joints 1 and n and of the pan are set to zero: no calibration of this kind can tell them from
   // the fixed point's and the marker's own rotation (calibration.h).
   Simulated simulate(int seed, double noise_px, int poses = 10) const {
-    auto error = friend_hw_sim::loadTrueError(trueErrorFile(), seed);
+    auto error = friend_hw_sim::loadTrueError(trueErrorFile(), model.description(), seed);
     error.arm_joint_offsets.front() = error.arm_joint_offsets.back() = 0;
     error.head_joint_offsets.front() = 0;
     return simulate(error, seed, noise_px, poses);

@@ -19,7 +19,7 @@ CalibrationViews renderCalibrationViews() {
   const auto nominal_desc = robot_description::loadRobotDescription(desc_path);
   const RobotModel nominal(nominal_desc);
   const RobotModel truth(friend_hw_sim::applyTrueError(
-      nominal_desc, friend_hw_sim::loadTrueError(root + "config/friend/true_error.yaml")));
+      nominal_desc, friend_hw_sim::loadTrueError(root + "config/friend/true_error.yaml", nominal_desc)));
   const auto world = friend_hw_sim::loadWorldScene(root + "config/friend/scene.yaml");
   CalibrationViews out;
   out.marker = imagenets::marker::MarkerDescription::load(root + "config/markers/gripper.yaml");

@@ -197,6 +197,34 @@ TEST_F(StorageTest, CalibratedUrdfCarriesTheFixedPointMarkerOffsetAndJointOffset
   EXPECT_EQ(urdfFileBeside((dir / "pth_fixed_point.yaml").string()), path);
 }
 
+// A robot that exists only as its own URDF (config/six_axis) gets that URDF back calibrated: its
+// link and joint names stay, its head mount joint (head_mast) holds the fixed point.
+TEST_F(StorageTest, CalibratedUrdfOfARobotWithItsOwnUrdfKeepsItsNames) {
+  const RobotModel six_axis(robot_description::loadRobotDescription(
+      fs::path(robot_description::defaultRobotDescriptionPath()).parent_path().parent_path().string() +
+      "/six_axis/robot.yaml"));
+  StoredCalibration c;
+  Result& r = c.result;
+  r.method = "joint";
+  r.fixed_point = robot_description::fromXyzRpy({-0.07, 0.046, 1.35}, {0.01, -0.02, 0.03});
+  r.marker_offset = six_axis.description().marker.pose;
+  r.arm_joint_offsets = {0, 0.01, -0.02, 0.003, 0.002, 0};
+  r.head_joint_offsets = {0, 0.005};
+  c.child_frame = "pth_fixed_point";
+  const std::string path = (dir / "six_axis.urdf").string();
+  saveCalibratedUrdf(six_axis, c, path);
+  urdf::Model urdf;
+  ASSERT_TRUE(urdf.initFile(path)) << path;
+  EXPECT_EQ(urdf.getName(), "six_axis");
+  expectSameFrame(originOf(urdf, "head_mast"), r.fixed_point, "head mount = fixed point");
+  EXPECT_TRUE(urdf.getLink("head_mount") && urdf.getLink("shoulder") && !urdf.getLink("head_link_0"));
+  std::ifstream f(path);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("joint head_mast (base_link -> head_mount, the calibrated pth_fixed_point)"), std::string::npos)
+      << text.substr(0, 800);
+  EXPECT_NE(text.find("elbow -1.14591559 deg"), std::string::npos) << text.substr(0, 800);
+}
+
 TEST_F(StorageTest, CalibratedUrdfThatCannotBeWrittenIsANamedErrorAndLeavesNoTemporaryFile) {
   StoredCalibration c;
   c.result = someResult();

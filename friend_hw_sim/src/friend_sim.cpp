@@ -32,7 +32,8 @@ FriendSim::FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh)
       true_error_file_(pnh.param<std::string>("true_error", packagePath("config/friend/true_error.yaml"))),
       truth_(std::make_shared<const robot_description::RobotModel>(
           applyTrueError(nominal_.description(),
-                         loadTrueError(true_error_file_, pnh.param<int>("seed", -1), pnh.param("magnitude", 1.0))))),
+                         loadTrueError(true_error_file_, nominal_.description(), pnh.param<int>("seed", -1),
+                                       pnh.param("magnitude", 1.0))))),
       rng_(static_cast<unsigned>(pnh.param<int>("noise_seed", 1))) {
   time_scale_ = pnh_.param("time_scale", 1.0);
   if (!(time_scale_ > 0)) throw std::runtime_error("parameter ~time_scale must be positive");
@@ -72,7 +73,7 @@ bool FriendSim::setTrueRobot(imagenets::SetTrueRobot::Request& req, imagenets::S
   std::shared_ptr<const robot_description::RobotModel> next;
   try {
     next = std::make_shared<const robot_description::RobotModel>(
-        applyTrueError(nominal_.description(), loadTrueError(true_error_file_, req.seed, magnitude)));
+        applyTrueError(nominal_.description(), loadTrueError(true_error_file_, nominal_.description(), req.seed, magnitude)));
   } catch (const std::exception& e) {
     res.success = false;
     res.message = std::string("set_true_robot: ") + e.what() + "; the true robot is unchanged";

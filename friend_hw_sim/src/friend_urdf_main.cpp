@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
       else throw std::runtime_error("unknown argument '" + a + "' (see --help)");
     }
     auto robot = robot_description::loadRobotDescription(description);
-    if (!error_file.empty()) robot = friend_hw_sim::applyTrueError(robot, friend_hw_sim::loadTrueError(error_file, seed, magnitude));
+    if (!error_file.empty()) robot = friend_hw_sim::applyTrueError(robot, friend_hw_sim::loadTrueError(error_file, robot, seed, magnitude));
     std::cout << robot_description::generateUrdf(robot, name);
   } catch (const std::exception& e) {
     std::cerr << "friend_urdf: " << e.what() << "\n";

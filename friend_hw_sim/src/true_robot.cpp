@@ -15,8 +15,8 @@ using robot_description::fromXyzRpy;
 using robot_description::RobotDescription;
 using namespace robot_description::yaml_fields;
 
-TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override,
-                                 double magnitude) {
+TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, const RobotDescription& nominal,
+                                 int seed_override, double magnitude) {
   if (!(magnitude > 0) || !std::isfinite(magnitude)) {
     throw std::runtime_error(where + ": the magnitude factor of the random error must be positive, not " +
                              std::to_string(magnitude));
@@ -59,12 +59,15 @@ TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& wher
   e.head_mount_rpy = direction() * head_r;
   e.marker_xyz = direction() * marker_t;
   e.marker_rpy = direction() * marker_r;
-  for (int i = 0; i < 7; ++i) e.arm_joint_offsets.push_back(uni(rng) * joint);
-  for (int i = 0; i < 2; ++i) e.head_joint_offsets.push_back(uni(rng) * joint);
+  // One offset per joint of the robot's chains (drawn in this order: a seed's mount and marker
+  // errors do not depend on the number of joints).
+  for (size_t i = 0; i < nominal.arm.joints.size(); ++i) e.arm_joint_offsets.push_back(uni(rng) * joint);
+  for (size_t i = 0; i < nominal.head.joints.size(); ++i) e.head_joint_offsets.push_back(uni(rng) * joint);
   return e;
 }
 
-TrueRobotError loadTrueError(const std::string& path, int seed_override, double magnitude) {
+TrueRobotError loadTrueError(const std::string& path, const RobotDescription& nominal, int seed_override,
+                             double magnitude) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -72,7 +75,7 @@ TrueRobotError loadTrueError(const std::string& path, int seed_override, double 
     throw std::runtime_error("true-robot error file '" + path + "': " + e.what());
   }
   const YAML::Node node = root["true_error"] ? root["true_error"] : root;
-  return trueErrorFromYaml(node, path + ": true_error", seed_override, magnitude);
+  return trueErrorFromYaml(node, path + ": true_error", nominal, seed_override, magnitude);
 }
 
 RobotDescription applyTrueError(const RobotDescription& nominal, const TrueRobotError& e) {

@@ -13,6 +13,11 @@ using robot_description::RobotModel;
 namespace {
 constexpr double kDeg = M_PI / 180.0;
 
+const robot_description::RobotDescription& friendRobot() {
+  static const auto d = loadRobotDescription("config/friend/robot.yaml");
+  return d;
+}
+
 double angleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return Eigen::AngleAxisd(a.transpose() * b).angle();
 }
@@ -20,7 +25,7 @@ double angleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 
 TEST(TrueRobot, DefaultTrueErrorIsAboutFifteenMillimetresAndTwoDegrees) {
   const auto nominal = loadRobotDescription("config/friend/robot.yaml");
-  const auto truth = applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml"));
+  const auto truth = applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml", nominal));
   const double dt = (truth.head.mount.translation() - nominal.head.mount.translation()).norm();
   const double dr = angleBetween(truth.head.mount.linear(), nominal.head.mount.linear());
   EXPECT_NEAR(dt, 0.015, 0.001);
@@ -33,9 +38,9 @@ TEST(TrueRobot, DefaultTrueErrorIsAboutFifteenMillimetresAndTwoDegrees) {
 }
 
 TEST(TrueRobot, SeededErrorsAreRepeatableAndOfTheGivenSize) {
-  const auto a = loadTrueError("config/friend/true_error.yaml", 5);
-  const auto b = loadTrueError("config/friend/true_error.yaml", 5);
-  const auto c = loadTrueError("config/friend/true_error.yaml", 6);
+  const auto a = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5);
+  const auto b = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5);
+  const auto c = loadTrueError("config/friend/true_error.yaml", friendRobot(), 6);
   EXPECT_TRUE(a.head_mount_xyz.isApprox(b.head_mount_xyz));
   EXPECT_FALSE(a.head_mount_xyz.isApprox(c.head_mount_xyz));
   EXPECT_NEAR(a.head_mount_xyz.norm(), 0.015, 1e-12);
@@ -44,14 +49,30 @@ TEST(TrueRobot, SeededErrorsAreRepeatableAndOfTheGivenSize) {
   for (double o : a.arm_joint_offsets) EXPECT_LE(std::abs(o), 0.1 * kDeg);
 }
 
+// A random error has one zero offset per joint of the robot it is drawn for, and the same seed
+// gives the same mount and marker error whatever the number of joints.
+TEST(TrueRobot, RandomJointOffsetsFollowTheRobotsJoints) {
+  const auto six_axis = loadRobotDescription("config/six_axis/robot.yaml");
+  ASSERT_EQ(six_axis.arm.joints.size(), 6u);
+  const auto a = loadTrueError("config/six_axis/true_error.yaml", six_axis, 5);
+  EXPECT_EQ(a.arm_joint_offsets.size(), 6u);
+  EXPECT_EQ(a.head_joint_offsets.size(), 2u);
+  const auto f = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5);
+  EXPECT_EQ(f.arm_joint_offsets.size(), 7u);
+  EXPECT_TRUE(a.head_mount_xyz.normalized().isApprox(f.head_mount_xyz.normalized()));
+  // The true robot of that seed is built (applyTrueError checks the counts).
+  const RobotModel t(applyTrueError(six_axis, a));
+  EXPECT_GT((t.headBase().translation() - RobotModel(six_axis).headBase().translation()).norm(), 1e-3);
+}
+
 TEST(TrueRobot, MagnitudeScalesTheRandomErrorAndMustBePositive) {
-  const auto a = loadTrueError("config/friend/true_error.yaml", 5);
-  const auto k = loadTrueError("config/friend/true_error.yaml", 5, 3.0);
+  const auto a = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5);
+  const auto k = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5, 3.0);
   EXPECT_TRUE(k.head_mount_xyz.isApprox(3.0 * a.head_mount_xyz));  // same direction, three times as far
   EXPECT_NEAR(k.head_mount_rpy.norm(), 6.0 * kDeg, 1e-12);
   EXPECT_NEAR(k.arm_joint_offsets[2], 3.0 * a.arm_joint_offsets[2], 1e-15);
   try {
-    loadTrueError("config/friend/true_error.yaml", 5, -1.0);
+    loadTrueError("config/friend/true_error.yaml", friendRobot(), 5, -1.0);
     FAIL() << "a negative magnitude was accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("true_error.yaml: true_error: the magnitude factor"), std::string::npos)

@@ -80,6 +80,6 @@ TEST(Urdf, NominalRobotAgreesWithDhKinematics) { checkAgreement(loadRobotDescrip
 
 TEST(Urdf, TrueRobotAgreesWithItsDhKinematics) {
   const auto nominal = loadRobotDescription("config/friend/robot.yaml");
-  checkAgreement(applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml")));
-  checkAgreement(applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml", 42)));
+  checkAgreement(applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml", nominal)));
+  checkAgreement(applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml", nominal, 42)));
 }

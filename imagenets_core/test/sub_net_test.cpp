@@ -13,6 +13,7 @@
 #include "imagenets/collectors.h"
 #include "imagenets/executor.h"
 #include "imagenets/graph.h"
+#include "imagenets/net_wide_property.h"
 #include "test_blocks.h"
 
 using namespace imagenets;
@@ -423,6 +424,73 @@ links: [c.value -> sub.x]
   Executor e(Net::build(spec), ExecutorOptions{2});
   ASSERT_TRUE(e.run().ok());
   EXPECT_DOUBLE_EQ(e.output<std_msgs::Float64>("sub.y")->data, 2.0);
+}
+
+// One value for every block that declares a property of that name, sub-nets at any depth included
+// (e.g. the robot description of a calibration node's nets).
+TEST(SubNet, APropertyIsSetOnEveryBlockOfTheNetTreeThatHasIt) {
+  write("level3.yaml", kDouble);
+  write("level2.yaml", R"(
+blocks:
+  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  inner: {type: imagenets/Executor, properties: {net: level3.yaml}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+links: [in.value -> inner.x, inner.y -> out.value]
+)");
+  write("tree.yaml", R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 3}}
+  sub: {type: imagenets/Executor, properties: {net: level2.yaml}}
+  after: {type: test/Scale, properties: {offset: 1}}
+links: [c.value -> sub.x, sub.y -> after.in]
+)");
+  auto e = loadFile("tree.yaml");
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("after.out")->data, 7.0);  // 3 * 2 * 1 + 1
+  EXPECT_EQ(setPropertyInNetTree(*e, "gain", "5"), (std::vector<std::string>{"sub/inner/scale", "after"}));
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("after.out")->data, 76.0);  // 3 * 5 * 5 + 1
+  // A filter on the property's declaration: here only integer properties named `gain` (none).
+  EXPECT_TRUE(setPropertyInNetTree(*e, "gain", "7", [](const PropertySpec& p) { return p.kind() == PropertyKind::Int; })
+                  .empty());
+  // A sub-net's until net is part of the tree: its threshold here is the target times `gain`.
+  write("index_only.yaml", R"(
+blocks:
+  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
+links: [k.value -> out.value]
+)");
+  write("scaled_sum_reached.yaml", R"(
+blocks:
+  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  scale: {type: test/Scale}
+  sum: {type: test/SumAtLeast}
+  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+links: [index_all.value -> sum.values, target.value -> scale.in, scale.out -> sum.threshold, sum.reached -> done.value]
+)");
+  write("until_tree.yaml", R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 10}}
+  loop: {type: imagenets/Executor, properties: {net: index_only.yaml, repeat: 2, repetition_input: k,
+                                                until_net: scaled_sum_reached.yaml, max_repeat: 8}}
+links: [c.value -> loop.target]
+)");
+  auto u = loadFile("until_tree.yaml");
+  ASSERT_TRUE(u->run().ok());
+  EXPECT_EQ(u->output<std_msgs::Float64MultiArray>("loop.index_all")->data.size(), 5u);  // 0+1+2+3+4 >= 10
+  EXPECT_EQ(setPropertyInNetTree(*u, "gain", "0.5"), (std::vector<std::string>{"loop/until/scale"}));
+  ASSERT_TRUE(u->run().ok());
+  EXPECT_EQ(u->output<std_msgs::Float64MultiArray>("loop.index_all")->data.size(), 4u);  // 0+1+2+3 >= 5
+  // A value that is not valid for a block names the block and the property.
+  try {
+    setPropertyInNetTree(*e, "gain", "not a number");
+    FAIL();
+  } catch (const std::exception& err) {
+    EXPECT_NE(std::string(err.what()).find("gain"), std::string::npos) << err.what();
+    EXPECT_NE(std::string(err.what()).find("scale"), std::string::npos) << err.what();
+  }
 }
 
 TEST(SubNet, GraphDrawsSubNetsAsClustersAndFeedbackDashed) {

@@ -49,8 +49,10 @@ CalibrationClient::CalibrationClient(const std::string& name, double timeout) : 
         std::lock_guard<std::mutex> l(p->m);
         p->joints = m;
       });
-  p->nominal = std::make_unique<robot_description::RobotModel>(
-      robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
+  // The robot the simulator runs (its ~description), for the error's effective fixed point.
+  std::string description = robot_description::defaultRobotDescriptionPath();
+  ros::param::get("/friend_sim/description", description);
+  p->nominal = std::make_unique<robot_description::RobotModel>(robot_description::loadRobotDescription(description));
   if (!ros::service::waitForService("/friend_calibration/calibrate", ros::Duration(timeout))) {
     throw std::runtime_error("service /friend_calibration/calibrate is not available after " + std::to_string(timeout) +
                              " s (is friend_calibration_node running?)");
@@ -128,7 +130,7 @@ CalibrationRun CalibrationClient::calibrate(const imagenets::Calibrate::Request&
     ros::param::get("/friend_sim/seed", seed);
     ros::param::get("/friend_sim/magnitude", magnitude);
     try {
-      const auto error = friend_hw_sim::loadTrueError(error_file, seed, magnitude);
+      const auto error = friend_hw_sim::loadTrueError(error_file, p->nominal->description(), seed, magnitude);
       run.effective = friend_hw_sim::effectiveHeadBase(p->nominal->description(), error);
       run.identifiable = friend_hw_sim::identifiableHeadBase(p->nominal->description(), error);
     } catch (const std::exception&) {

@@ -7,9 +7,6 @@
 #include <fstream>
 #include <sstream>
 
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <actionlib/client/simple_action_client.h>
 #include <geometry_msgs/TransformStamped.h>
@@ -27,18 +24,11 @@
 #include "imagenets/CalibrateAction.h"
 #include "imagenets/vision/frames.h"
 #include "imagenets/calling_thread_queue.h"
-#include "rostest_util.h"
+#include "urdf_state_publisher.h"
 
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-std::string readFile(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) { return imagenets::frames::toIsometry(t, "transform"); }
 
@@ -84,7 +74,8 @@ class FriendCalibration : public ::testing::Test {
     int seed = -1;
     ASSERT_TRUE(ros::param::get("/friend_sim/true_error", error_file));
     ros::param::get("/friend_sim/seed", seed);
-    const auto error = friend_hw_sim::loadTrueError(error_file, seed);
+    const auto error = friend_hw_sim::loadTrueError(
+        error_file, robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()), seed);
     const Eigen::Isometry3d effective =
         t * Eigen::AngleAxisd(error.head_joint_offsets.empty() ? 0.0 : error.head_joint_offsets[0], Eigen::Vector3d::UnitZ());
     *eff_mm = (x.translation() - effective.translation()).norm() * 1000;
@@ -134,26 +125,6 @@ TEST_F(FriendCalibration, RecoversTheTrueFixedPointAndPublishesIt) {
   EXPECT_NO_THROW(buffer.lookupTransform("base_link", "calibrated/stereo_left_optical_frame", ros::Time(0), ros::Duration(5)));
 }
 
-// A child process (here Debian's robot_state_publisher), stopped with SIGINT when it goes.
-class ChildProcess {
- public:
-  explicit ChildProcess(std::vector<std::string> args) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawnp(&pid_, argv[0], nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
-  }
-  ~ChildProcess() {
-    if (pid_ <= 0) return;
-    kill(pid_, SIGINT);
-    waitpid(pid_, nullptr, 0);
-  }
-  bool started() const { return pid_ > 0; }
-
- private:
-  pid_t pid_ = -1;
-};
-
 // Like Fetch's robot_calibration, the node writes a calibrated URDF beside the calibration file:
 // Debian's robot_state_publisher, started on it as it is, must give the calibrated frames: the
 // head mount (base_link -> head_link_0) at the fixed point, and at given joint states the frames
@@ -169,52 +140,7 @@ TEST_F(FriendCalibration, CalibratedUrdfGivesTheCalibratedFramesInRobotStatePubl
       stored.result);
   ASSERT_FALSE(stored.result.head_joint_offsets.empty()) << "the joint method estimates the tilt's zero offset";
 
-  // Its own namespace and TF topics, beside the simulator's robot_state_publisher (true robot).
-  const std::string ns = "/calibrated_urdf";
-  ros::param::set(ns + "/robot_description", readFile(res.urdf_file));
-  tf2::BufferCore buffer;
-  ros::NodeHandle nh;
-  auto add = [&buffer](bool is_static) {
-    return [&buffer, is_static](const tf2_msgs::TFMessageConstPtr& m) {
-      for (const auto& t : m->transforms) buffer.setTransform(t, "calibrated_urdf", is_static);
-    };
-  };
-  ros::Subscriber tf_sub = nh.subscribe<tf2_msgs::TFMessage>(ns + "/tf", 100, add(false));
-  ros::Subscriber static_sub = nh.subscribe<tf2_msgs::TFMessage>(ns + "/tf_static", 10, add(true));
-  ros::Publisher joints = nh.advertise<sensor_msgs::JointState>(ns + "/joint_states", 10);
-  ChildProcess publisher({"rosrun", "robot_state_publisher", "robot_state_publisher", "__ns:=" + ns,
-                          "__name:=calibrated_state_publisher", "/tf:=" + ns + "/tf", "/tf_static:=" + ns + "/tf_static"});
-  ASSERT_TRUE(publisher.started());
-
-  auto expectNear = [&](const std::string& child, const Eigen::Isometry3d& expected) {
-    const Eigen::Isometry3d seen = toEigen(buffer.lookupTransform("base_link", child, ros::Time(0)).transform);
-    EXPECT_LT((seen.translation() - expected.translation()).norm(), 1e-6) << child;
-    EXPECT_LT(friend_calibration::angleBetween(seen, expected), 1e-6) << child;
-  };
-  ASSERT_TRUE(waitFor([&] { return buffer.canTransform("base_link", "head_link_0", ros::Time(0)); }, 60))
-      << "robot_state_publisher published no base_link -> head_link_0 from " << res.urdf_file;
-  expectNear("head_link_0", toEigen(res.fixed_point.transform));
-
-  // Joint states (as the encoders read them): every frame of the arm and the head follows.
-  const auto& d = calibrated.description();
-  sensor_msgs::JointState js;
-  js.name = d.arm.names();
-  for (const auto& n : d.head.names()) js.name.push_back(n);
-  std::vector<double> arm = d.arm_calibration_pose, head = {0.2, 0.4};
-  for (size_t i = 0; i < arm.size(); ++i) arm[i] += 0.05 * (i + 1);
-  js.position = arm;
-  js.position.insert(js.position.end(), head.begin(), head.end());
-  ASSERT_TRUE(waitFor(
-      [&] {
-        js.header.stamp = ros::Time::now();
-        joints.publish(js);
-        return buffer.canTransform("base_link", d.left_camera.frame, ros::Time(0)) &&
-               buffer.canTransform("base_link", d.marker.frame, ros::Time(0));
-      },
-      60))
-      << "robot_state_publisher published no moving joints";
-  expectNear(d.left_camera.frame, calibrated.leftCamera(head));
-  expectNear(d.marker.frame, calibrated.marker(arm));
+  expectUrdfGivesTheFrames(res.urdf_file, calibrated, "head_link_0");
 }
 
 TEST_F(FriendCalibration, ReplayOfStoredSamplesReproducesTheResult) {

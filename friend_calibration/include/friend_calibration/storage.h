@@ -32,13 +32,15 @@ StoredCalibration loadCalibration(const std::string& path);
 // `max_uncertainty` <= 0: never refuses; a fresh result without covariance (paper method) is not
 // judged.
 std::string overwriteRefusal(const Result& fresh, const std::string& path, double max_uncertainty);
-// The calibrated URDF (as Fetch's robot_calibration writes one): the URDF generated from the
-// nominal description (robot_description/urdf_generator.h) with the calibration applied
-// (calibratedModel): the head mount joint's origin is the fixed point, the marker joint's origin
-// the estimated marker offset, and each estimated joint zero offset is folded into its revolute
-// joint's origin (a rotation about the joint axis). robot_state_publisher and KDL ignore URDF
-// <calibration> elements, so offsets written there would not take effect; a comment at the top
-// lists the changes. The robot's joint_states (raw encoder readings) then give the calibrated TF.
+// The calibrated URDF (as Fetch's robot_calibration writes one): the nominal robot's URDF with the
+// calibration applied (calibratedModel; robot_description/urdf_writer.h): the robot's own URDF
+// when its description has one (config/six_axis: links and joints keep their names), else the
+// URDF generated from the description. The head mount joint's origin is the fixed point, the
+// marker joint's origin the estimated marker offset, and each estimated joint zero offset is folded
+// into its revolute joint's origin (a rotation about the joint axis). robot_state_publisher and KDL
+// ignore URDF <calibration> elements, so offsets written there would not take effect; a comment at
+// the top lists the changes. The robot's joint_states (raw encoder readings) then give the
+// calibrated TF.
 std::string calibratedUrdf(const RobotModel& nominal, const StoredCalibration& calibration);
 // Writes calibratedUrdf atomically to `path` (creating its directory). Throws std::runtime_error
 // naming the path on failure; the previous file is then untouched.

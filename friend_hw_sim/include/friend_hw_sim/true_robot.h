@@ -24,13 +24,16 @@ struct TrueRobotError {
   std::vector<double> arm_joint_offsets, head_joint_offsets;  // rad, added to the joints' offsets
 };
 
-// Reads `true_error` settings (see config/friend/true_error.yaml). With `seed` > 0 the error is
-// drawn at random with the given magnitudes (repeatable per seed); with seed 0 the explicit values
-// are used. `magnitude` scales the `random` magnitudes (a study over robots K times as far off as
-// the file's; ignored for explicit values). Throws naming the key (or the magnitude) on bad input.
-TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where, int seed_override = -1,
+// Reads `true_error` settings (see config/friend/true_error.yaml) for the robot `nominal`. With
+// `seed` > 0 the error is drawn at random with the given magnitudes (repeatable per seed), one
+// zero offset per joint of `nominal`'s arm and head; with seed 0 the explicit values are used.
+// `magnitude` scales the `random` magnitudes (a study over robots K times as far off as the file's;
+// ignored for explicit values). Throws naming the key (or the magnitude) on bad input.
+TrueRobotError trueErrorFromYaml(const YAML::Node& node, const std::string& where,
+                                 const robot_description::RobotDescription& nominal, int seed_override = -1,
                                  double magnitude = 1.0);
-TrueRobotError loadTrueError(const std::string& path, int seed_override = -1, double magnitude = 1.0);
+TrueRobotError loadTrueError(const std::string& path, const robot_description::RobotDescription& nominal,
+                             int seed_override = -1, double magnitude = 1.0);
 // The description of the true robot.
 robot_description::RobotDescription applyTrueError(const robot_description::RobotDescription& nominal,
                                                    const TrueRobotError& error);

@@ -2,15 +2,26 @@
 // the inner net's cached values, e.g. the nodelet host's `publish_internal_ports`.
 #pragma once
 
+#include <string>
+#include <vector>
+
 namespace imagenets {
 
 class Executor;
+
+struct InnerExecutorRef {
+  std::string path;  // under the block's name in run events: "" for the inner net, e.g. "until"
+  Executor* executor;
+};
 
 class InnerNet {
  public:
   virtual ~InnerNet() = default;
   // The inner executor (null before configure()); its public API is thread-safe.
   virtual const Executor* innerExecutor() const = 0;
+  // Every net the block runs inside (the inner net and, e.g., a sub-net's until net), to change
+  // them (e.g. a property of their blocks: net_wide_property.h); none before configure().
+  virtual std::vector<InnerExecutorRef> innerExecutors() = 0;
 };
 
 }  // namespace imagenets

@@ -281,6 +281,13 @@ void SubNetBlock::process(Context& ctx) {
   }
 }
 
+std::vector<InnerExecutorRef> SubNetBlock::innerExecutors() {
+  std::vector<InnerExecutorRef> nets;
+  if (executor_) nets.push_back({"", executor_.get()});
+  if (until_) nets.push_back({"until", until_.get()});
+  return nets;
+}
+
 const Net* SubNetBlock::subNet() const { return executor_ ? &executor_->net() : nullptr; }
 
 }  // namespace imagenets

@@ -40,6 +40,7 @@ class SubNetBlock : public Block, public InnerNet {
 
   const Net* subNet() const override;
   const Executor* innerExecutor() const override { return executor_.get(); }
+  std::vector<InnerExecutorRef> innerExecutors() override;
   // The until net's executor (null without `until_net`); its public API is thread-safe, so a host
   // may read its outputs between repetitions or set its properties between runs.
   Executor* untilExecutor() const { return until_.get(); }
