@@ -10,6 +10,7 @@
 #include "friend_hw_sim/cameras.h"
 #include "friend_hw_sim/true_robot.h"
 #include "imagenets/vision/frames.h"
+#include "robot_description/urdf_writer.h"
 
 namespace friend_hw_sim {
 
@@ -38,6 +39,7 @@ FriendSim::FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh)
   time_scale_ = pnh_.param("time_scale", 1.0);
   if (!(time_scale_ > 0)) throw std::runtime_error("parameter ~time_scale must be positive");
   const auto& d = nominal_.description();
+  head_link0_ = robot_description::urdfChainMountJoint(d, d.head).child;  // as the URDF TF comes from names it
   arm_ = std::make_unique<JointGroupServer>(nh_, "arm/move_joints", d.arm, d.arm_home, pnh_.resolveName("faults/arm_abort_probability"),
                                             static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + 11);
   head_ = std::make_unique<JointGroupServer>(nh_, "head/move_joints", d.head, d.head_home,
@@ -89,7 +91,7 @@ bool FriendSim::setTrueRobot(imagenets::SetTrueRobot::Request& req, imagenets::S
   pnh_.setParam("magnitude", magnitude);
   const Eigen::Isometry3d head_base = next->headBase();
   res.head_base = imagenets::frames::toTransformStamped(head_base, nominal_.description().base_frame,
-                                                        nominal_.description().head.link_prefix + "0", ros::Time::now());
+                                                        head_link0_, ros::Time::now());
   char b[256];
   std::snprintf(b, sizeof b, "true robot: seed %d, magnitude %.2f; head mount %.1f mm, %.2f deg off the nominal one",
                 static_cast<int>(req.seed), magnitude,
@@ -166,7 +168,7 @@ void FriendSim::publishGroundTruth(const RobotState& s) {
   pub("hand_camera", model->handCamera(s.arm), d.hand_camera.frame);
   pub("left_camera", model->leftCamera(s.head), d.left_camera.frame);
   pub("right_camera", model->rightCamera(s.head), d.right_camera_frame);
-  pub("head_base", model->headBase(), d.head.link_prefix + "0");
+  pub("head_base", model->headBase(), head_link0_);
 }
 
 void FriendSim::publishWrench(const RobotState& s) {

@@ -1,4 +1,5 @@
-// friend_urdf: prints the URDF of the FRIEND robot generated from its DH description, for the
+// friend_urdf: prints the URDF of the FRIEND robot generated from its DH description (of a robot
+// with its own URDF, e.g. config/six_axis: that URDF, robot_description::writeUrdf), for the
 // robot_description parameter (launch: <param name="robot_description" command="rosrun imagenets
 // friend_urdf --true-error ..."/>).
 //   friend_urdf [--description robot.yaml] [--true-error true_error.yaml] [--seed N] [--magnitude K] [--name NAME]
@@ -7,7 +8,7 @@
 
 #include "friend_hw_sim/true_robot.h"
 #include "robot_description/robot_model.h"
-#include "robot_description/urdf_generator.h"
+#include "robot_description/urdf_writer.h"
 
 int main(int argc, char** argv) {
   std::string description = robot_description::defaultRobotDescriptionPath(), error_file, name = "friend";
@@ -32,9 +33,11 @@ int main(int argc, char** argv) {
       } else if (a.rfind("__", 0) == 0) continue;  // roslaunch remapping arguments
       else throw std::runtime_error("unknown argument '" + a + "' (see --help)");
     }
-    auto robot = robot_description::loadRobotDescription(description);
-    if (!error_file.empty()) robot = friend_hw_sim::applyTrueError(robot, friend_hw_sim::loadTrueError(error_file, robot, seed, magnitude));
-    std::cout << robot_description::generateUrdf(robot, name);
+    const auto nominal = robot_description::loadRobotDescription(description);
+    auto robot = nominal;
+    if (!error_file.empty()) robot = friend_hw_sim::applyTrueError(nominal, friend_hw_sim::loadTrueError(error_file, nominal, seed, magnitude));
+    // A robot with its own URDF gets that URDF (its names) with the true robot's error written in.
+    std::cout << robot_description::writeUrdf(nominal, robot, name);
   } catch (const std::exception& e) {
     std::cerr << "friend_urdf: " << e.what() << "\n";
     return 1;

@@ -37,6 +37,15 @@ blocks:
 links: [in.value -> scale.in, scale.out -> out.value]
 )";
 
+// x -> the innermost net (level3.yaml) -> y.
+const char* kLevel2 = R"(
+blocks:
+  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  inner: {type: imagenets/Executor, properties: {net: level3.yaml}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+links: [in.value -> inner.x, inner.y -> out.value]
+)";
+
 }  // namespace
 
 TEST(SubNet, PortsComeFromExecutorInputAndOutputBlocks) {
@@ -108,13 +117,7 @@ links: [c.value -> p.x, c.feedback_trace -> sub.x]
 
 TEST(SubNet, NestsThreeLevelsDeep) {
   write("level3.yaml", kDouble);
-  write("level2.yaml", R"(
-blocks:
-  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
-  inner: {type: imagenets/Executor, properties: {net: level3.yaml}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
-links: [in.value -> inner.x, inner.y -> out.value]
-)");
+  write("level2.yaml", kLevel2);
   write("level1.yaml", R"(
 blocks:
   in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
@@ -269,6 +272,15 @@ TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
   }
 }
 
+// The index net with an input `target` it does not use itself (an until net's).
+const char* kIndexTarget = R"(
+blocks:
+  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
+  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
+links: [k.value -> out.value]
+)";
+
 // An until net: done when the indices so far (`index_all`) add up to the input `target`.
 const char* kSumReached = R"(
 blocks:
@@ -282,13 +294,7 @@ links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reache
 // Repeat until: past N repetitions one more at a time, until the until net says done.
 TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   // The repeated net hands out its index; `target` is an input it does not use itself.
-  write("index_target.yaml", R"(
-blocks:
-  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
-  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
-links: [k.value -> out.value]
-)");
+  write("index_target.yaml", kIndexTarget);
   // Its until net is fed from the block's input `target` and the collection `index_all` so far.
   write("sum_reached.yaml", kSumReached);
   write("until.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, repeat: 2, "
@@ -430,13 +436,7 @@ links: [c.value -> sub.x]
 // (e.g. the robot description of a calibration node's nets).
 TEST(SubNet, APropertyIsSetOnEveryBlockOfTheNetTreeThatHasIt) {
   write("level3.yaml", kDouble);
-  write("level2.yaml", R"(
-blocks:
-  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
-  inner: {type: imagenets/Executor, properties: {net: level3.yaml}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
-links: [in.value -> inner.x, inner.y -> out.value]
-)");
+  write("level2.yaml", kLevel2);
   write("tree.yaml", R"(
 blocks:
   c: {type: test/Constant, properties: {value: 3}}
@@ -454,13 +454,7 @@ links: [c.value -> sub.x, sub.y -> after.in]
   EXPECT_TRUE(setPropertyInNetTree(*e, "gain", "7", [](const PropertySpec& p) { return p.kind() == PropertyKind::Int; })
                   .empty());
   // A sub-net's until net is part of the tree: its threshold here is the target times `gain`.
-  write("index_only.yaml", R"(
-blocks:
-  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
-  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
-links: [k.value -> out.value]
-)");
+  write("index_target.yaml", kIndexTarget);
   write("scaled_sum_reached.yaml", R"(
 blocks:
   index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
@@ -473,7 +467,7 @@ links: [index_all.value -> sum.values, target.value -> scale.in, scale.out -> su
   write("until_tree.yaml", R"(
 blocks:
   c: {type: test/Constant, properties: {value: 10}}
-  loop: {type: imagenets/Executor, properties: {net: index_only.yaml, repeat: 2, repetition_input: k,
+  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, repeat: 2, repetition_input: k,
                                                 until_net: scaled_sum_reached.yaml, max_repeat: 8}}
 links: [c.value -> loop.target]
 )");

@@ -19,6 +19,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include "robot_description/robot_model.h"
+#include "robot_description/urdf_writer.h"
 #include "imagenets/vision/marker.h"
 #include "imagenets/MoveJointsAction.h"
 #include "imagenets/calling_thread_queue.h"
@@ -144,7 +145,9 @@ TEST_F(FriendSimCameras, GroundTruthAgreesWithTheTrueRobotTf) {
   }
   // And the truth is not the nominal robot: the head is mounted off by about 15 mm.
   const auto nominal = robot_description::RobotModel(robot_description::loadRobotDescription(descriptionPath()));
-  const auto tf = buffer.lookupTransform("base_link", "head_link_0", ros::Time(0));
+  // The head's link 0 as the robot's URDF names it (FRIEND: head_link_0, six_axis: head_mount).
+  const auto head_link0 = robot_description::urdfChainMountJoint(nominal.description(), nominal.description().head).child;
+  const auto tf = buffer.lookupTransform("base_link", head_link0, ros::Time(0));
   EXPECT_NEAR((toEigen(tf).translation() - nominal.headBase().translation()).norm(), 0.015, 0.002);
 }
 

@@ -65,6 +65,7 @@ class FriendSim {
   ros::NodeHandle nh_, pnh_;
   robot_description::RobotModel nominal_;
   std::string true_error_file_;
+  std::string head_link0_;  // the head chain's first link in TF (the true fixed point's frame)
   mutable std::mutex truth_mutex_;
   std::shared_ptr<const robot_description::RobotModel> truth_;
   double time_scale_ = 1.0;  // ~time_scale, read live (timer thread only)
