@@ -15,7 +15,8 @@
 // this block's inputs (e.g. `plan`) and from the collections so far (`<port>_all`), and its
 // std_msgs/Bool output `done` stops the repetitions when true (a run of it that fails counts as not
 // done). Its run events come as "<this block>/until/<block>", before the repetition's event, so an
-// observer of that event can read the until net's outputs (untilExecutor()).
+// observer of that event can read the until net's outputs (untilExecutor()); the repetition events'
+// count is then the most that may run (max_repeat).
 #pragma once
 
 #include <memory>
