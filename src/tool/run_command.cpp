@@ -1,4 +1,4 @@
-// `imagenets run NET [--set block.property=value ...] [--output-dir DIR] [--threads N] [--quiet]
+// `imagenets run NET [--set block.property=value ...] [--set-all property=value ...] [--output-dir DIR] [--threads N] [--quiet]
 // [--trials]`: runs a net, prints a progress line per block as it finishes (from the run events, on
 // stderr), writes every output port (images as PNG, the rest as YAML) and prints per-block timings.
 #include <cstdio>
@@ -11,6 +11,7 @@
 
 #include "command.h"
 #include "imagenets/executor.h"
+#include "imagenets/net_wide_property.h"
 #include "output_writer.h"
 
 namespace imagenets {
@@ -37,11 +38,12 @@ RunObserver progressPrinter(const Net& net, bool trials) {
 
 int run(const Args& args) {
   std::string net_path, output_dir;
-  std::vector<std::string> sets;
+  std::vector<std::string> sets, set_alls;
   ExecutorOptions options;
   bool quiet = false, trials = false;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--set") sets.push_back(flagValue(args, i));
+    else if (args[i] == "--set-all") set_alls.push_back(flagValue(args, i));
     else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
     else if (args[i] == "--trials") trials = true;
     else if (args[i] == "--output-dir" || args[i] == "-o") output_dir = flagValue(args, i);
@@ -70,6 +72,21 @@ int run(const Args& args) {
     p->text = s.substr(eq + 1);
   }
   Executor executor(Net::build(spec), options);
+  // --set-all: one value for every block of the net and its sub-nets that has the property (e.g.
+  // the robot description every calibration block reads). Relative paths: against the working
+  // directory (a value for blocks of several net files).
+  for (const auto& s : set_alls) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) throw UsageError("--set-all '" + s + "' is not property=value");
+    const std::string property = s.substr(0, eq);
+    const auto set = setPropertyInNetTree(executor, property, s.substr(eq + 1));
+    if (set.empty()) throw UsageError("--set-all '" + s + "': no block of " + net_path + " or its sub-nets has a property '" + property + "'");
+    if (!quiet) {
+      std::cout << "--set-all " << property << ":";
+      for (const auto& b : set) std::cout << " " << b;
+      std::cout << "\n";
+    }
+  }
   if (!quiet) executor.addObserver(progressPrinter(executor.net(), trials));
   const RunReport report = executor.run();
 
@@ -105,7 +122,8 @@ int run(const Args& args) {
 }  // namespace
 
 IMAGENETS_TOOL_COMMAND(run, "run",
-                       "run NET [--set block.property=value ...] [--output-dir DIR] [--threads N] [--quiet] [--trials]",
+                       "run NET [--set block.property=value ...] [--set-all property=value ...] [--output-dir DIR] [--threads N] "
+                       "[--quiet] [--trials]",
                        "run a net, showing progress (--trials: every feedback trial); write its outputs (images as "
                        "PNG, others as YAML); print timings",
                        run);

@@ -113,6 +113,33 @@ TEST(Tool, RunWritesOutputsAndTimings) {
   expectContains(r.output, "config/nets/threshold_demo.yaml has no block 'treshold'");
 }
 
+// --set-all gives every block of the net and its sub-nets that has the property one value: here the
+// robot description, so `run` replays the stored samples of a six-axis robot's calibration
+// (test/tool/six_axis_calibration.yaml, written by friend_calibration_node on config/six_axis in
+// the simulator) with that robot's kinematics, and finds the stored fixed point again.
+TEST(Tool, RunSetAllGivesEveryBlockOfTheNetTreeTheRobotDescription) {
+  const std::string dir = temp("six_axis_replay");
+  const std::string replay = "run config/nets/calibration.yaml --set samples.net=calibration_sample_replay.yaml "
+                             "--set plan.replay=" +
+                             boost::filesystem::absolute("test/tool/six_axis_calibration.yaml").string() +
+                             " --set plan.method=joint ";
+  Result r = tool(replay + "--set-all description=config/six_axis/robot.yaml --output-dir " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "--set-all description: plan samples/until/solve solve");
+  std::ifstream in(dir + "/fixed_point.value.yaml");
+  std::stringstream fixed;
+  fixed << in.rdbuf();
+  expectContains(fixed.str(), "x: -0.08977030358");  // the stored fixed_point: [-0.089770303580141764, ...
+  expectContains(fixed.str(), "z: 1.28800168702");
+  // Without it the blocks compute with their default robot (FRIEND's 7-joint arm).
+  r = tool(replay);
+  EXPECT_EQ(r.status, 1);
+  expectContains(r.output, "expected 7 joint angles, got 6");
+  r = tool("run config/nets/threshold_demo.yaml --set-all no_such_property=1");
+  EXPECT_EQ(r.status, 2);  // a usage error
+  expectContains(r.output, "no block of config/nets/threshold_demo.yaml or its sub-nets has a property 'no_such_property'");
+}
+
 TEST(Tool, RunWritesTheFeedbackTrace) {
   const std::string dir = temp("fb_out");
   Result r = tool("run config/nets/feedback_threshold.yaml --trials --output-dir " + dir);
