@@ -140,9 +140,10 @@ int main() {
   std::vector<Variant> variants;
   const auto unchanged = [](imagenets::FeedbackSpec&) {};
   variants.push_back({"calibration default (Otsu first, stop if good)", variant(unchanged, true)});
-  // Its region: 120 px around the prediction, the whole image only where that misses the marker.
-  variants.push_back({"calibration default, region margin 300 px", variant(unchanged, true, {300})});
-  variants.push_back({"calibration default, always the whole image", variant(unchanged, true, {0})});
+  // Its region: 300 px around the prediction, the whole image only where that misses the marker;
+  // a narrower first region, and always the whole image.
+  variants.push_back({"region 120 px, else the whole image", variant(unchanged, true, {120, 0})});
+  variants.push_back({"region always the whole image", variant(unchanged, true, {0})});
   variants.push_back({"always the coarse-to-fine sweep", variant(always_sweep, true)});
   // Candidates given as a list, tried in order, no first guess, no early stop.
   auto only = [](std::vector<double> values) {

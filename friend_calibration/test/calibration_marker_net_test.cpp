@@ -59,7 +59,7 @@ TEST(CalibrationMarkerNet, FindsTheMarkerWhereItIsOtsuFirstAndStopsWhenGood) {
     // the marker was not found there (a reflection over it).
     const auto region = net.lastRegionTrace();
     ASSERT_TRUE(region) << what;
-    EXPECT_EQ(region->values, (o.found ? std::vector<double>{120} : std::vector<double>{120, 0})) << what;
+    EXPECT_EQ(region->values, (o.found ? std::vector<double>{300} : std::vector<double>{300, 0})) << what;
     if (!o.found) {
       EXPECT_TRUE(v.reflection) << what << ": " << o.reason;  // only reflections may hide it
       continue;
@@ -148,16 +148,19 @@ TEST(CalibrationMarkerNet, AMarkerFarFromThePredictionIsFoundInTheWholeImage) {
   CalibrationMarkerNet net;
   for (size_t i : {0u, 5u}) {
     const CalibrationView& v = data.views[i];
+    // 0.25 m sideways at 0.6 m: ~580 px, towards the wider side of the image, so that the marker
+    // lies outside the first region (300 px around the 140 px marker) but the region not wholly
+    // outside the image.
     Eigen::Isometry3d off = v.predicted;
-    off.translation() += Eigen::Vector3d(0.12, -0.08, 0.0);  // ~ 200 px at 0.6 m
+    off.translation().x() += v.truth.translation().x() < 0 ? 0.25 : -0.25;
     const MarkerObservation o = net.detect(message(v), v.info, off);
     ASSERT_TRUE(o.found) << "view " << i << ": " << o.reason;
     EXPECT_LT((o.pose.translation() - v.truth.translation()).norm(), 0.001) << "view " << i;
     const auto region = net.lastRegionTrace();
     ASSERT_TRUE(region);
-    EXPECT_EQ(region->values, (std::vector<double>{120, 0})) << "view " << i;
+    EXPECT_EQ(region->values, (std::vector<double>{300, 0})) << "view " << i;
     EXPECT_EQ(region->chosen_value, 0) << "view " << i;
-    EXPECT_TRUE(std::isnan(region->scores.front())) << "view " << i << ": the margin 120 px region held a marker";
+    EXPECT_TRUE(std::isnan(region->scores.front())) << "view " << i << ": the margin 300 px region held a marker";
   }
 }
 

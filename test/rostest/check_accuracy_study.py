@@ -19,7 +19,10 @@ for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":"):
     sys.path.extend(glob.glob(os.path.join(prefix, "lib", "python3*", "dist-packages")))
 from imagenets.srv import SetTrueRobot  # noqa: E402
 
-SEEDS = (6, 7)  # two true robots of three times the default error whose views the calibration detects
+# Two true robots of three times the default error whose marker the nominal model predicts so far
+# off that a region of 120 px around the prediction missed it (the calibration failed for them
+# before its detection's first region became 300 px, with the whole image after it).
+SEEDS = (9, 10)
 
 
 class AccuracyStudyTest(unittest.TestCase):
@@ -52,6 +55,9 @@ class AccuracyStudyTest(unittest.TestCase):
             # Millimetres against this robot's truth: had the images stayed with the previous true
             # robot, the error would be the tens of millimetres between the two robots' mounts.
             self.assertLess(float(r["effective_error_mm"]), 10.0, r)
+            # Issue 15's accuracy target, against what images of the arm's marker can determine
+            # (0.12 and 0.17 mm seen at 3 loops).
+            self.assertLess(float(r["identifiable_error_mm"]), 0.5, r)
             self.assertGreater(float(r["bound3_mm"]), 0.0, r)
             self.assertGreater(int(r["samples_used"]), 0, r)
         with open(os.path.join(out, "runs.csv")) as f:

@@ -48,7 +48,7 @@ class CalibrationMarkerNet {
   // The last threshold search (in the chosen region): thresholds in the order tried, their scores,
   // why it stopped. None when no region held the marker.
   boost::shared_ptr<const imagenets::FeedbackTrace> lastTrace() const;
-  // The last region search: the margins tried (120 px, then 0 = the whole image).
+  // The last region search: the margins tried (300 px, then 0 = the whole image).
   boost::shared_ptr<const imagenets::FeedbackTrace> lastRegionTrace() const;
   imagenets::Executor& executor() { return *executor_; }
 
