@@ -275,8 +275,7 @@ int accuracyStudy(const Args& args) {
   int poses_per_loop = 2;
   ros::param::get("/friend_calibration/poses_per_loop", poses_per_loop);
   if (method == "paper") poses_per_loop = 1;
-  const robot_description::RobotModel nominal(
-      robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath()));
+  const robot_description::RobotModel& nominal = client.nominal();  // the robot the simulator runs
 
   char buf[1024];
   std::snprintf(buf, sizeof buf,

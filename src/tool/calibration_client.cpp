@@ -80,6 +80,8 @@ std::string CalibrationClient::setTrueRobot(int seed, double magnitude) {
   return srv.response.message;
 }
 
+const robot_description::RobotModel& CalibrationClient::nominal() const { return *impl_->nominal; }
+
 void CalibrationClient::setSimParam(const std::string& name, double value) { ros::param::set("/friend_sim/" + name, value); }
 
 CalibrationRun CalibrationClient::calibrate(int redundancy, const std::string& method, int poses) {

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "imagenets/Calibrate.h"
+#include "robot_description/robot_model.h"
 
 namespace imagenets {
 namespace tool {
@@ -43,6 +44,8 @@ class CalibrationClient {
   // the random error of true_error.yaml's magnitudes times `magnitude`). Returns its message;
   // throws with it when the simulator refuses or is not there. Later runs compare with that truth.
   std::string setTrueRobot(int seed, double magnitude);
+  // The robot the simulator runs, as described (its ~description; FRIEND's when there is none).
+  const robot_description::RobotModel& nominal() const;
   // Reads a float parameter of the simulator (or sets it); false when absent.
   static void setSimParam(const std::string& name, double value);
 

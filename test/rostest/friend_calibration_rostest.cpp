@@ -7,7 +7,6 @@
 #include <fstream>
 #include <sstream>
 
-
 #include <actionlib/client/simple_action_client.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
