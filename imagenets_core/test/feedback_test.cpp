@@ -128,6 +128,26 @@ TEST_F(FeedbackTest, NoValidCandidateIsAVisibleStateNotACrash) {
   EXPECT_TRUE(std::isnan(trace->scores[0]));
 }
 
+TEST_F(FeedbackTest, WhenTheTunedBlockFailsInEveryTrialItsStatsKeepWhy) {
+  auto e = load(R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 1}}
+  x:
+    type: test/Scale
+    properties: {fail: true}
+    feedback: {property: gain, from: 0, to: 5, score: score.score}
+  score: {type: test/Parabola}
+links: [c.value -> x.in, x.out -> score.x]
+)");
+  RunReport r = e->run();
+  ASSERT_EQ(r.failed.size(), 1u);
+  // The verdict is "no valid candidate"; the reason stays readable as the last process() failure.
+  const BlockStats stats = e->stats("x");
+  EXPECT_NE(stats.message.find("feedback: no valid candidate"), std::string::npos) << stats.message;
+  EXPECT_EQ(stats.failures, 6u);
+  EXPECT_EQ(stats.last_error, "block 'x' (test/Scale): asked to fail");
+}
+
 TEST_F(FeedbackTest, ChangingABlockInsideTheRegionRerunsTheSweep) {
   auto e = load(sweepNet("{property: value, from: 0, to: 4, score: score.score}", 1.0));
   e->run();
