@@ -19,7 +19,6 @@
 
 #include "friend_calibration/calibration_msgs.h"
 #include "imagenets/vision/frames.h"
-#include "imagenets/blocks/sub_net_block.h"
 #include "imagenets/inner_net.h"
 #include "imagenets/net_wide_property.h"
 #include "robot_description/joint_state.h"
@@ -249,8 +248,12 @@ void CalibrationNode::loadNets(const std::string& net, const std::string& replay
 
 imagenets::Executor* CalibrationNode::untilNet(const imagenets::Executor& exec) {
   const int samples = exec.net().findNode("samples");
-  const auto* block = samples < 0 ? nullptr : dynamic_cast<const imagenets::SubNetBlock*>(exec.net().node(samples).block.get());
-  return block ? block->untilExecutor() : nullptr;
+  auto* inner = samples < 0 ? nullptr : dynamic_cast<imagenets::InnerNet*>(exec.net().node(samples).block.get());
+  if (!inner) return nullptr;
+  for (const imagenets::InnerExecutorRef& net : inner->innerExecutors()) {
+    if (net.path == "until") return net.executor;
+  }
+  return nullptr;
 }
 
 void CalibrationNode::onJointStates(const sensor_msgs::JointStateConstPtr& msg) {

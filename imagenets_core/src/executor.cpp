@@ -206,6 +206,13 @@ void Executor::setProperty(const std::string& block, const std::string& property
   markOutOfDate(n);
 }
 
+void Executor::markOutOfDate(const std::string& block) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const int n = net_->findNode(block);
+  if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
+  markOutOfDate(n);
+}
+
 void Executor::setPropertyText(const std::string& block, const std::string& property, const std::string& text) {
   int n = net_->findNode(block);
   if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});

@@ -24,12 +24,8 @@ bool setIn(Executor& exec, const std::string& prefix, const std::string& propert
       const std::string path = prefix + node.name + "/" + (net.path.empty() ? "" : net.path + "/");
       changed = setIn(*net.executor, path, property, text, accept, set) || changed;
     }
-    if (changed && !node.block->propertySpecs().empty()) {
-      // The outer executor caches the sub-net block's outputs: one of its properties set again to
-      // its own value marks it out of date, so the next run re-runs the changed sub-net.
-      const std::string& any = node.block->propertySpecs().front().name();
-      exec.setProperty(node.name, any, node.block->propertyValue(any));
-    }
+    // The outer executor caches the sub-net block's outputs: the next run re-runs the changed sub-net.
+    if (changed) exec.markOutOfDate(node.name);
   }
   return set.size() > before;
 }

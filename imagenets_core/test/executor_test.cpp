@@ -74,6 +74,21 @@ TEST_F(ExecutorTest, PropertyChangeIsValidatedAndNamed) {
   EXPECT_THROW(e->setProperty("zz", "gain", 1.0), NetError);
 }
 
+TEST_F(ExecutorTest, MarkOutOfDateReRunsTheBlockAndDownstreamOnTheNextRun) {
+  auto e = load(kChain);
+  e->run();
+  e->markOutOfDate("b");
+  EXPECT_EQ(calls("b"), 1);  // nothing runs until the next run
+  EXPECT_EQ(e->run().ran, (std::vector<std::string>{"b", "c"}));
+  EXPECT_EQ(calls("a"), 1);
+  try {
+    e->markOutOfDate("zz");
+    FAIL();
+  } catch (const NetError& err) {
+    EXPECT_NE(std::string(err.what()).find("no block named 'zz'"), std::string::npos) << err.what();
+  }
+}
+
 TEST_F(ExecutorTest, RunBlockRunsItAndItsDownstream) {
   auto e = load(kChain);
   e->run();

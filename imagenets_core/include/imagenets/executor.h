@@ -67,6 +67,9 @@ class Executor {
   // out of date so the next run re-executes it and its downstream.
   void setProperty(const std::string& block, const std::string& property, const PropertyValue& value);
   void setPropertyText(const std::string& block, const std::string& property, const std::string& text);
+  // Marks a block out of date without changing it (e.g. the net inside a sub-net block changed):
+  // the next run re-executes it and its downstream. Throws NetError for an unknown block.
+  void markOutOfDate(const std::string& block);
 
   // The cached value of an output port ("block.port"); empty if it has none.
   Value output(const std::string& block_port) const;

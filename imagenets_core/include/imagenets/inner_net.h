@@ -20,7 +20,8 @@ class InnerNet {
   // The inner executor (null before configure()); its public API is thread-safe.
   virtual const Executor* innerExecutor() const = 0;
   // Every net the block runs inside (the inner net and, e.g., a sub-net's until net), to change
-  // them (e.g. a property of their blocks: net_wide_property.h); none before configure().
+  // them (e.g. a property of their blocks: net_wide_property.h) or read their outputs between
+  // runs; none before configure().
   virtual std::vector<InnerExecutorRef> innerExecutors() = 0;
 };
 

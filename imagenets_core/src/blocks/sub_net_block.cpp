@@ -196,7 +196,9 @@ void SubNetBlock::process(Context& ctx) {
   // One sub-net instance: concurrent calls (feedback trials) take turns.
   std::lock_guard<std::mutex> lock(run_mutex_);
   Nesting nesting(*executor_, ctx.innerChannel());
-  for (const auto& in : inputs_) executor_->setInput(in.inner, ctx.inputValue(in.port));
+  std::vector<Value> input_values;  // also what the until net is fed
+  for (const auto& in : inputs_) input_values.push_back(ctx.inputValue(in.port));
+  for (size_t i = 0; i < inputs_.size(); ++i) executor_->setInput(inputs_[i].inner, input_values[i]);
   int repeat = ctx.property<int>("repeat");
   if (ctx.property<bool>("repeat_from_input")) {
     repeat = ctx.input<std_msgs::Int32>("repeat")->data;
@@ -213,8 +215,6 @@ void SubNetBlock::process(Context& ctx) {
                        " is below the " + std::to_string(repeat) + " repetitions that run anyway");
     }
   }
-  std::vector<Value> input_values;
-  for (const auto& in : inputs_) input_values.push_back(ctx.inputValue(in.port));
   std::vector<std::vector<Value>> results(outputs_.size());
   std::string first_failure_message;
   std::string first_failure;

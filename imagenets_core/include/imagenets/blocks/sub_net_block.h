@@ -15,8 +15,8 @@
 // this block's inputs (e.g. `plan`) and from the collections so far (`<port>_all`), and its
 // std_msgs/Bool output `done` stops the repetitions when true (a run of it that fails counts as not
 // done). Its run events come as "<this block>/until/<block>", before the repetition's event, so an
-// observer of that event can read the until net's outputs (untilExecutor()); the repetition events'
-// count is then the most that may run (max_repeat).
+// observer of that event can read the until net's outputs (innerExecutors(): path "until"); the
+// repetition events' count is then the most that may run (max_repeat).
 #pragma once
 
 #include <memory>
@@ -42,9 +42,6 @@ class SubNetBlock : public Block, public InnerNet {
   const Net* subNet() const override;
   const Executor* innerExecutor() const override { return executor_.get(); }
   std::vector<InnerExecutorRef> innerExecutors() override;
-  // The until net's executor (null without `until_net`); its public API is thread-safe, so a host
-  // may read its outputs between repetitions or set its properties between runs.
-  Executor* untilExecutor() const { return until_.get(); }
 
  private:
   struct InPort {
