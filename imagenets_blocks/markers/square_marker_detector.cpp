@@ -40,12 +40,16 @@ class SquareMarkerDetector : public Block {
         .range(0.0, 10000.0);
     addProperty<bool>("edge_model", false,
                       "fit a blurred-edge model to every pixel along each outer edge (dim, noisy, blurred images)");
+    addProperty<std::vector<double>>("match_blur_px", std::vector<double>{},
+                                     "image blurs (sigma, px) under which a rejected candidate's pattern is matched again "
+                                     "(small, far, blurred markers); empty: sharp match only");
   }
 
   // An unreadable marker file is a load error naming the block, not a marker never found (the
   // detector often runs inside feedback trials, whose failures only mean "no score").
   void configure() override {
     if (!property<std::string>("marker").empty()) loadMarker(property<std::string>("marker"));
+    checkedBlurs(property<std::vector<double>>("match_blur_px"));
   }
 
   void process(Context& ctx) override {
@@ -63,6 +67,7 @@ class SquareMarkerDetector : public Block {
     options.refine_passes = ctx.property<int>("refine_passes");
     options.min_inner_side_px = ctx.property<double>("min_inner_side_px");
     options.edge_model = ctx.property<bool>("edge_model");
+    options.match_blur_px = checkedBlurs(ctx.property<std::vector<double>>("match_blur_px"));
     Eigen::Isometry3d hint;
     if (const auto pose_hint = ctx.input<geometry_msgs::PoseStamped>("pose_hint")) {
       hint = marker::fromPoseMsg(pose_hint->pose);
@@ -80,6 +85,15 @@ class SquareMarkerDetector : public Block {
   }
 
  private:
+  static std::vector<double> checkedBlurs(const std::vector<double>& blurs) {
+    for (const double sigma : blurs) {
+      if (!(sigma > 0 && sigma <= 5)) {
+        throw BlockError("property 'match_blur_px': " + std::to_string(sigma) + " is not a blur in (0, 5] px");
+      }
+    }
+    return blurs;
+  }
+
   static std::shared_ptr<const marker::MarkerDescription> loadMarker(const std::string& path) {
     try {
       return marker::MarkerDescription::loadCached(path);

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 
@@ -407,9 +408,67 @@ struct Candidate {
   int rotation = 0;
 };
 
+// What the blurred match compares the samples with: the marker (border, pattern, margin) at
+// kTextureSide px across its black square, and where that square starts in the texture.
+struct MatchTexture {
+  static constexpr double kTextureSide = 96;
+  cv::Mat texture;  // CV_8UC1
+  double origin = 0;
+  explicit MatchTexture(const MarkerDescription& marker)
+      : texture(marker.texture(kTextureSide / marker.size, true)),
+        origin(std::lround(marker.margin * marker.size * (kTextureSide / marker.size))) {}
+};
+
+// The expected gray values at the sample points `norm` (normalised) of the marker seen through the
+// homography H (unit square -> normalised) with an image-space Gaussian blur of `sigma_px`, for
+// each of the 4 quarter turns of the texture. Empty when the marker is too large for blur to matter.
+std::vector<cv::Mat> blurredExpectation(const MatchTexture& match, const render::CameraModel& cam, const cv::Mat& H,
+                                        const std::vector<cv::Point2d>& norm, double sigma_px, int cells) {
+  // Undistorted pixels: blur is a few pixels, the distortion over a small marker negligible.
+  const cv::Matx33d KH = cam.K * cv::Matx33d(H);
+  std::vector<cv::Point2d> corners_px;
+  for (const cv::Point2d u : {cv::Point2d(-0.3, -0.3), {1.3, -0.3}, {1.3, 1.3}, {-0.3, 1.3}}) {
+    const cv::Vec3d p = KH * cv::Vec3d(u.x, u.y, 1.0);
+    if (!(p[2] > 0)) return {};
+    corners_px.emplace_back(p[0] / p[2], p[1] / p[2]);
+  }
+  const cv::Rect2d box = cv::boundingRect(std::vector<cv::Point2f>(corners_px.begin(), corners_px.end()));
+  const double pad = 3 * sigma_px + 2, side = std::max(box.width, box.height) + 2 * pad;
+  if (side > 400) return {};  // cells of many pixels: the sharp match is right
+  const double k = std::max(1.0, std::min(4.0, 160.0 / side));  // supersampling of the rendered patch
+  const int size = static_cast<int>(std::ceil(side * k));
+  // texture px -> unit square -> normalised -> pixels -> patch
+  const double t = MatchTexture::kTextureSide, o = match.origin;
+  const cv::Matx33d tex_to_unit(1 / t, 0, -o / t, 0, 1 / t, -o / t, 0, 0, 1);
+  const cv::Matx33d px_to_patch(k, 0, -k * (box.x - pad), 0, k, -k * (box.y - pad), 0, 0, 1);
+  const cv::Matx33d M = px_to_patch * KH * tex_to_unit;
+  std::vector<cv::Point2d> at;
+  for (const auto& q : norm) {
+    const cv::Vec3d p = cam.K * cv::Vec3d(q.x, q.y, 1.0);
+    at.emplace_back(k * (p[0] / p[2] - box.x + pad), k * (p[1] / p[2] - box.y + pad));
+  }
+  std::vector<cv::Mat> out;
+  cv::Mat turned = match.texture;
+  for (int r = 0; r < 4; ++r) {
+    cv::Mat patch;
+    cv::warpPerspective(turned, patch, cv::Mat(M), cv::Size(size, size), cv::INTER_AREA, cv::BORDER_CONSTANT,
+                        cv::Scalar(255));
+    cv::GaussianBlur(patch, patch, cv::Size(0, 0), sigma_px * k);
+    cv::Mat expected(cells, cells, CV_64F);
+    for (int i = 0; i < cells * cells; ++i) expected.at<double>(i / cells, i % cells) = bilinear(patch, at[i].x, at[i].y);
+    out.push_back(expected);
+    cv::rotate(turned, turned, cv::ROTATE_90_COUNTERCLOCKWISE);
+  }
+  return out;
+}
+
 // Rectifies the inner area through the homography of the outer corners and matches the pattern.
+// With `blurred` (DetectorOptions::match_blur_px), a candidate the sharp pattern rejects is matched
+// again against the pattern as a blurred camera would show it (far, small markers: every cell a
+// pixel or two, smeared into its neighbours).
 void matchPattern(const cv::Mat& gray, const render::CameraModel& cam, const MarkerDescription& marker,
-                  const cv::Mat& pattern_cells, int cells, Candidate* cand) {
+                  const cv::Mat& pattern_cells, int cells, const MatchTexture* blurred,
+                  const DetectorOptions& options, Candidate* cand) {
   // Marker-plane square [0,1]^2 (u right, v down as in the pattern image) onto the image quad.
   const std::vector<cv::Point2f> unit{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   std::vector<cv::Point2f> quad(cand->outer_norm.begin(), cand->outer_norm.end());
@@ -431,6 +490,15 @@ void matchPattern(const cv::Mat& gray, const render::CameraModel& cam, const Mar
     const double ncc = zeroMeanNcc(rotated, pattern_cells);
     if (ncc > cand->confidence) cand->confidence = ncc, cand->rotation = k;
     cv::rotate(rotated, rotated, cv::ROTATE_90_CLOCKWISE);
+  }
+  if (blurred && cand->confidence < options.min_confidence) {
+    for (const double sigma : options.match_blur_px) {
+      const std::vector<cv::Mat> expected = blurredExpectation(*blurred, cam, H, norm, sigma, cells);
+      for (size_t k = 0; k < expected.size(); ++k) {
+        const double ncc = zeroMeanNcc(patch, expected[k]);
+        if (ncc > cand->confidence) cand->confidence = ncc, cand->rotation = static_cast<int>(k);
+      }
+    }
   }
   cand->confidence = std::max(0.0, std::min(1.0, cand->confidence));
 }
@@ -466,6 +534,8 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   cv::resize(marker.pattern, pattern_cells, cv::Size(options.pattern_cells, options.pattern_cells), 0, 0,
              cv::INTER_AREA);
   pattern_cells.convertTo(pattern_cells, CV_64F);
+  std::unique_ptr<MatchTexture> blurred;
+  if (!options.match_blur_px.empty()) blurred.reset(new MatchTexture(marker));
 
   // Dark regions (the border is below the threshold) and their outer boundaries.
   cv::Mat dark = binary == 0;
@@ -503,7 +573,7 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
     }
     if (!refined) continue;
     if (options.refine_passes == 0) cand.outer_norm = normalise(outer_px, camera);
-    matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, &cand);
+    matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, blurred.get(), options, &cand);
     if (cand.confidence > best.confidence) best = cand;
   }
   if (best.confidence < options.min_confidence || best.outer_norm.empty()) {

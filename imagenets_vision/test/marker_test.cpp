@@ -157,6 +157,37 @@ TEST(MarkerDetector, ConfidenceIsLowForAWrongPattern) {
   EXPECT_GT(right.confidence, 0.9);
 }
 
+TEST(MarkerDetector, AFarBlurredMarkerIsMatchedAgainstItsBlurredPattern) {
+  // 1.39 m away at 60 deg, blur 1.9 px: the pattern's cells are 1..2 px and smeared into each
+  // other, so the sharp pattern matches poorly. Matched against the pattern as the camera blurs
+  // it, the same candidate is clearly the marker, in the right orientation.
+  const render::Renderer r(friendCamera(), 3);
+  for (const double pan : {20.0, 200.0}) {
+    const Eigen::Isometry3d truth = render::lookAtOriginPose(1.39, pan * kDeg, 60 * kDeg);
+    const Shot s = shoot(r, gripper(), truth, 60, 1.0, 1.9);
+    marker::DetectorOptions sharp;
+    sharp.refine_passes = 4;
+    sharp.min_confidence = 0.7;  // as the nets that match blurred patterns set it
+    marker::DetectorOptions blurred = sharp;
+    blurred.match_blur_px = {1, 2};
+    const Detection a = marker::detect(s.gray, s.binary, friendCamera(), gripper(), sharp);
+    const Detection b = marker::detect(s.gray, s.binary, friendCamera(), gripper(), blurred);
+    EXPECT_LT(a.confidence, 0.6) << "pan " << pan;
+    ASSERT_TRUE(b.found) << "pan " << pan;
+    EXPECT_GT(b.confidence, 0.85) << "pan " << pan;
+    EXPECT_LT(marker::rotationAngle(b.pose, truth) / kDeg, 5.0) << "pan " << pan;
+    EXPECT_LT(positionErrorMm(b, truth), 15.0) << "pan " << pan;  // 1 % of the distance
+    // A wrong pattern stays below the limit under the same blurred match.
+    MarkerDescription other = gripper();
+    other.pattern = cv::Mat(6, 6, CV_8UC1, cv::Scalar(255));
+    other.pattern(cv::Rect(1, 1, 1, 4)).setTo(0);  // a different glyph: two bars
+    other.pattern(cv::Rect(3, 1, 1, 4)).setTo(0);
+    const Shot o = shoot(r, other, truth, 60, 1.0, 1.9);
+    const Detection wrong = marker::detect(o.gray, o.binary, friendCamera(), gripper(), blurred);
+    EXPECT_FALSE(wrong.found) << "pan " << pan << ": confidence " << wrong.confidence;
+  }
+}
+
 TEST(MarkerDetector, LensDistortionIsTakenIntoAccount) {
   render::CameraModel cam = friendCamera();
   cam.D = {-0.35, 0.2, 0.0, 0.0, 0.0};  // strong barrel distortion

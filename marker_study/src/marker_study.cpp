@@ -59,6 +59,17 @@ double percentile(std::vector<double> v, double q) {
   return v[i] + (v[j] - v[i]) * (pos - i);
 }
 
+// The marker with a random 6 x 6 pattern in place of its own: a decoy, as another marker of the
+// same kind (or any black-framed square with something inside) would be.
+MarkerDescription withRandomPattern(const MarkerDescription& marker, std::mt19937_64* rng) {
+  cv::Mat cells(6, 6, CV_8UC1);
+  for (int i = 0; i < 36; ++i) cells.at<uchar>(i / 6, i % 6) = ((*rng)() & 1) ? 255 : 0;
+  MarkerDescription decoy = marker;
+  decoy.pattern = cv::Mat();  // its own pixels, not the marker's (cv::Mat copies share them)
+  cv::resize(cells, decoy.pattern, marker.pattern.size(), 0, 0, cv::INTER_NEAREST);
+  return decoy;
+}
+
 }  // namespace
 
 const std::vector<StudyCondition>& studyConditions() {
@@ -209,70 +220,86 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
         const cv::Mat tag_image = renderView(*renderer, tag, settings, nullptr);
         std_msgs::Header header;
         header.frame_id = info->header.frame_id;
-        const sensor_msgs::ImageConstPtr msg = cv_bridge::CvImage(header, "mono8", square_image).toImageMsg();
 
-        auto row = [&](const std::string& method) {
-          StudyRow r;
-          r.pan = v.pan;
-          r.tilt = v.tilt;
-          r.condition = v.condition->name;
-          r.distance = v.distance;
-          r.blur = v.blur;
-          r.noise = v.noise;
-          r.illumination = v.illumination;
-          r.background = v.condition->background;
-          r.method = method;
-          r.threshold = std::numeric_limits<double>::quiet_NaN();
-          return r;
-        };
-        auto score = [&](StudyRow& r, const Eigen::Isometry3d& pose) {
-          r.position_error_mm = 1000.0 * (pose.translation() - truth.translation()).norm();
-          r.orientation_error_deg = rotationAngle(pose, truth) / kDeg;
-        };
-        for (MarkerDetectionNet* net : {&fixed_net, &feedback_net}) {
-          StudyRow r = row(net == &fixed_net ? fixed_name : "detect");
-          const MarkerDetectionNet::Result res = net->run(msg, info);
-          if (!res.error.empty()) throw std::runtime_error(res.error);
-          r.ms = res.ms;
-          r.found = res.detection->found;
-          if (r.found) {
-            r.threshold = res.detection->threshold;
-            score(r, fromPoseMsg(res.detection->pose));
+        // Every method on one rendering of the view (of the marker, or of a decoy in its place).
+        auto runMethods = [&](const cv::Mat& square_view, const cv::Mat& tag_view, bool decoy) {
+          const sensor_msgs::ImageConstPtr msg = cv_bridge::CvImage(header, "mono8", square_view).toImageMsg();
+          auto row = [&](const std::string& method) {
+            StudyRow r;
+            r.pan = v.pan;
+            r.tilt = v.tilt;
+            r.condition = v.condition->name;
+            r.distance = v.distance;
+            r.blur = v.blur;
+            r.noise = v.noise;
+            r.illumination = v.illumination;
+            r.background = v.condition->background;
+            r.method = method;
+            r.threshold = std::numeric_limits<double>::quiet_NaN();
+            r.decoy = decoy;
+            return r;
+          };
+          auto score = [&](StudyRow& r, const Eigen::Isometry3d& pose) {
+            r.position_error_mm = 1000.0 * (pose.translation() - truth.translation()).norm();
+            r.orientation_error_deg = rotationAngle(pose, truth) / kDeg;
+          };
+          for (MarkerDetectionNet* net : {&fixed_net, &feedback_net}) {
+            StudyRow r = row(net == &fixed_net ? fixed_name : "detect");
+            const MarkerDetectionNet::Result res = net->run(msg, info);
+            if (!res.error.empty()) throw std::runtime_error(res.error);
+            r.ms = res.ms;
+            r.found = res.detection->found;
+            if (r.found) {
+              r.threshold = res.detection->threshold;
+              score(r, fromPoseMsg(res.detection->pose));
+            }
+            results[i].push_back(r);
           }
-          results[i].push_back(r);
-        }
-        if (calibration_net) {
-          StudyRow r = row("calibration");
-          auto predicted = boost::make_shared<geometry_msgs::PoseStamped>();
-          predicted->header = header;
-          predicted->pose = frames::toPose(truth);
+          if (calibration_net) {
+            StudyRow r = row("calibration");
+            auto predicted = boost::make_shared<geometry_msgs::PoseStamped>();
+            predicted->header = header;
+            predicted->pose = frames::toPose(truth);
+            const auto t0 = std::chrono::steady_clock::now();
+            calibration_net->setInput("image.value", msg);
+            calibration_net->setInput("camera_info.value", sensor_msgs::CameraInfoConstPtr(info));
+            calibration_net->setInput("predicted_pose.value", geometry_msgs::PoseStampedConstPtr(predicted));
+            const RunReport report = calibration_net->run();
+            r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            const auto region = calibration_net->output<FeedbackTrace>("region.feedback_trace");
+            const auto trace = calibration_net->output<FeedbackTrace>("feedback_trace.value");
+            const auto detection = calibration_net->output<imagenets::MarkerDetection>("detection.value");
+            // No region and threshold of the search found it: "no valid candidate", not an error.
+            if (!report.ok() && !(region && !region->found)) {
+              throw std::runtime_error(config.calibration_net + ": " + report.failed.front());
+            }
+            r.found = report.ok() && detection && detection->found;
+            if (r.found) {
+              r.threshold = trace->chosen_value;
+              score(r, fromPoseMsg(detection->pose));
+            }
+            results[i].push_back(r);
+          }
+          StudyRow r = row("apriltag");
           const auto t0 = std::chrono::steady_clock::now();
-          calibration_net->setInput("image.value", msg);
-          calibration_net->setInput("camera_info.value", sensor_msgs::CameraInfoConstPtr(info));
-          calibration_net->setInput("predicted_pose.value", geometry_msgs::PoseStampedConstPtr(predicted));
-          const RunReport report = calibration_net->run();
+          const Detection d = april_detector.detect(tag_view, camera);
           r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-          const auto region = calibration_net->output<FeedbackTrace>("region.feedback_trace");
-          const auto trace = calibration_net->output<FeedbackTrace>("feedback_trace.value");
-          const auto detection = calibration_net->output<imagenets::MarkerDetection>("detection.value");
-          // No region and threshold of the search found it: "no valid candidate", not an error.
-          if (!report.ok() && !(region && !region->found)) {
-            throw std::runtime_error(config.calibration_net + ": " + report.failed.front());
-          }
-          r.found = report.ok() && detection && detection->found;
-          if (r.found) {
-            r.threshold = trace->chosen_value;
-            score(r, fromPoseMsg(detection->pose));
-          }
+          r.found = d.found;
+          if (d.found) score(r, d.pose);
           results[i].push_back(r);
+        };
+        runMethods(square_image, tag_image, false);
+        if (config.decoys) {
+          std::mt19937_64 decoy_rng(v.seed ^ 0x5eedDec0ull);
+          render::Plane decoy_square = markerPlane(withRandomPattern(marker, &decoy_rng), Eigen::Isometry3d::Identity());
+          applyPrintReflectance(&decoy_square);
+          // tag36h11 has 587 codes; the detector looks for id 0.
+          render::Plane decoy_tag =
+              aprilTagPlane(april, 1 + static_cast<int>(decoy_rng() % 586), marker.margin, Eigen::Isometry3d::Identity());
+          applyPrintReflectance(&decoy_tag);
+          runMethods(renderView(*renderer, decoy_square, settings, nullptr),
+                     renderView(*renderer, decoy_tag, settings, nullptr), true);
         }
-        StudyRow r = row("apriltag");
-        const auto t0 = std::chrono::steady_clock::now();
-        const Detection d = april_detector.detect(tag_image, camera);
-        r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        r.found = d.found;
-        if (d.found) score(r, d.pose);
-        results[i].push_back(r);
         const int n = ++done;
         if (progress) {
           std::lock_guard<std::mutex> lock(progress_mutex);
@@ -311,6 +338,11 @@ std::vector<StudySummaryRow> summarize(const std::vector<StudyRow>& rows) {
       std::vector<double> mm, deg, ms;
       for (const auto& r : rows) {
         if (r.method != method || r.condition != condition) continue;
+        if (r.decoy) {
+          ++s.decoys;
+          s.false_positives += r.found ? 1 : 0;
+          continue;
+        }
         ++s.images;
         ms.push_back(r.ms);
         if (!r.found) continue;
@@ -341,6 +373,10 @@ const StudySummaryRow* findSummary(const std::vector<StudySummaryRow>& summary, 
   return nullptr;
 }
 
+bool anyDecoys(const std::vector<StudySummaryRow>& summary) {
+  return std::any_of(summary.begin(), summary.end(), [](const StudySummaryRow& s) { return s.decoys > 0; });
+}
+
 }  // namespace
 
 std::vector<TargetCheck> checkTargets(const std::vector<StudySummaryRow>& summary) {
@@ -363,7 +399,7 @@ std::vector<TargetCheck> checkTargets(const std::vector<StudySummaryRow>& summar
 std::string toCsv(const std::vector<StudyRow>& rows) {
   std::ostringstream os;
   os << "pan_deg,tilt_deg,condition,distance_m,blur_px,noise,illumination,background,method,found,position_error_mm,"
-        "orientation_error_deg,threshold,time_ms\n";
+        "orientation_error_deg,threshold,time_ms,decoy\n";
   os << std::fixed;
   for (const auto& r : rows) {
     os << std::setprecision(0) << r.pan << "," << r.tilt << "," << r.condition << "," << std::setprecision(3)
@@ -372,13 +408,13 @@ std::string toCsv(const std::vector<StudyRow>& rows) {
     if (r.found) os << std::setprecision(4) << r.position_error_mm << "," << r.orientation_error_deg << ",";
     else os << ",,";
     if (std::isfinite(r.threshold)) os << std::setprecision(0) << r.threshold;
-    os << "," << std::setprecision(2) << r.ms << "\n";
+    os << "," << std::setprecision(2) << r.ms << "," << (r.decoy ? 1 : 0) << "\n";
   }
   return os.str();
 }
 
 std::vector<StudyRow> fromCsv(const std::string& csv) {
-  const size_t kFields = 14;
+  const size_t kFields = 15;  // 14 in files written before the decoy column: no decoys
   std::vector<StudyRow> rows;
   std::istringstream in(csv);
   std::string line;
@@ -389,7 +425,8 @@ std::vector<StudyRow> fromCsv(const std::string& csv) {
     std::stringstream ls(line);
     std::string cell;
     while (std::getline(ls, cell, ',')) f.push_back(cell);
-    if (f.size() == kFields - 1 && line.back() == ',') f.push_back("");
+    if (f.size() == kFields - 2 && line.back() == ',') f.push_back("");
+    if (f.size() == kFields - 1) f.push_back("0");
     if (f.size() != kFields) {
       throw std::runtime_error("study CSV line " + std::to_string(n) + ": expected " + std::to_string(kFields) +
                                " fields, found " + std::to_string(f.size()));
@@ -412,6 +449,7 @@ std::vector<StudyRow> fromCsv(const std::string& csv) {
       }
       r.threshold = f[12].empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(f[12]);
       r.ms = f[13].empty() ? 0.0 : std::stod(f[13]);
+      r.decoy = f[14] == "1";
       rows.push_back(r);
     } catch (const std::logic_error&) {
       throw std::runtime_error("study CSV line " + std::to_string(n) + ": bad number");
@@ -421,15 +459,19 @@ std::vector<StudyRow> fromCsv(const std::string& csv) {
 }
 
 std::string toMarkdown(const std::vector<StudySummaryRow>& summary, const StudyConfig& config) {
+  const bool decoys = anyDecoys(summary);
   std::ostringstream os;
-  os << "| condition | method | detected | median pos. error mm | p95 mm | max mm | median orient. error deg | max deg | median time ms |\n";
-  os << "|---|---|---|---|---|---|---|---|---|\n";
+  os << "| condition | method | detected | median pos. error mm | p95 mm | max mm | median orient. error deg | max deg | median time ms |"
+     << (decoys ? " false positives on decoys |\n" : "\n");
+  os << "|---|---|---|---|---|---|---|---|---|" << (decoys ? "---|\n" : "\n");
   os << std::fixed;
   for (const auto& s : summary) {
     os << "| " << s.condition << " | " << s.method << " | " << s.found << "/" << s.images << " ("
        << std::setprecision(1) << 100.0 * s.found / std::max(1, s.images) << " %) | " << std::setprecision(3)
        << s.median_mm << " | " << s.p95_mm << " | " << s.max_mm << " | " << s.median_deg << " | " << s.max_deg
-       << " | " << std::setprecision(1) << s.median_ms << " |\n";
+       << " | " << std::setprecision(1) << s.median_ms << " |";
+    if (decoys) os << " " << s.false_positives << "/" << s.decoys << " |";
+    os << "\n";
   }
   os << std::setprecision(0) << "\nMarker " << config.marker << ", camera " << config.camera << ", net " << config.net
      << ", tilt " << config.tilt_from << ".." << config.tilt_to << " step " << config.tilt_step << " deg, pan "
@@ -450,10 +492,12 @@ std::string toMarkdown(const std::vector<StudySummaryRow>& summary, const StudyC
 }
 
 std::string sideBySideMarkdown(const std::vector<StudySummaryRow>& summary) {
+  const bool decoys = anyDecoys(summary);
   std::ostringstream os;
   os << "| condition | ours | detected: ours / apriltag | median mm: ours / apriltag | p95 mm: ours / apriltag | "
-        "rate >= apriltag | median <= apriltag / 2 |\n";
-  os << "|---|---|---|---|---|---|---|\n";
+        "rate >= apriltag | median <= apriltag / 2 |"
+     << (decoys ? " false positives on decoys: ours / apriltag |\n" : "\n");
+  os << "|---|---|---|---|---|---|---|" << (decoys ? "---|\n" : "\n");
   os << std::fixed;
   for (const auto& t : checkTargets(summary)) {
     const StudySummaryRow& d = *findSummary(summary, t.condition, t.method);
@@ -465,7 +509,9 @@ std::string sideBySideMarkdown(const std::vector<StudySummaryRow>& summary) {
     };
     os << "| " << t.condition << " | " << t.method << " | " << rate(d) << " / " << rate(a) << " | "
        << std::setprecision(3) << d.median_mm << " / " << a.median_mm << " | " << d.p95_mm << " / " << a.p95_mm
-       << " | " << (t.rate_ok ? "yes" : "NO") << " | " << (t.median_ok ? "yes" : "NO") << " |\n";
+       << " | " << (t.rate_ok ? "yes" : "NO") << " | " << (t.median_ok ? "yes" : "NO") << " |";
+    if (decoys) os << " " << d.false_positives << "/" << d.decoys << " / " << a.false_positives << "/" << a.decoys << " |";
+    os << "\n";
   }
   return os.str();
 }
@@ -474,7 +520,7 @@ cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& cond
   std::vector<double> pans, tilts;
   std::vector<std::string> methods;
   for (const auto& r : rows) {
-    if (r.condition != condition) continue;
+    if (r.condition != condition || r.decoy) continue;
     if (std::find(pans.begin(), pans.end(), r.pan) == pans.end()) pans.push_back(r.pan);
     if (std::find(tilts.begin(), tilts.end(), r.tilt) == tilts.end()) tilts.push_back(r.tilt);
     if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) methods.push_back(r.method);
@@ -505,7 +551,7 @@ cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& cond
     const int y0 = top + 20 + static_cast<int>(m) * (panel_h + gap);
     cv::putText(img, methods[m], cv::Point(left, y0 - 6), font, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     for (const auto& r : rows) {
-      if (r.condition != condition || r.method != methods[m]) continue;
+      if (r.condition != condition || r.method != methods[m] || r.decoy) continue;
       const int cx = static_cast<int>(std::find(pans.begin(), pans.end(), r.pan) - pans.begin());
       const int cy = static_cast<int>(std::find(tilts.begin(), tilts.end(), r.tilt) - tilts.begin());
       const cv::Rect box(left + cx * cell, y0 + cy * cell, cell, cell);

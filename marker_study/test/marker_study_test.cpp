@@ -2,6 +2,8 @@
 // paper's two conditions, and the harder ones of issue 15 against libapriltag.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "marker_study/marker_study.h"
 
 using namespace imagenets::marker;
@@ -110,3 +112,38 @@ TEST(MarkerStudy, UnknownConditionNamesTheNameAndTheKnownOnes) {
   EXPECT_EQ(selectConditions("dim,dim").size(), 1u);
 }
 
+
+TEST(MarkerStudy, DecoysCountAsFalsePositivesNotAsViews) {
+  StudyConfig config;
+  makeQuick(&config);
+  config.conditions = selectConditions("combined");
+  config.threads = 2;
+  config.decoys = true;
+  const auto rows = runStudy(config);
+  ASSERT_EQ(rows.size(), 12u * 4 * 2);  // every method on the view and on its decoy
+  EXPECT_EQ(std::count_if(rows.begin(), rows.end(), [](const StudyRow& r) { return r.decoy; }), 12 * 4);
+  const auto summary = summarize(rows);
+  for (const auto& method : {"detect", "calibration", "apriltag"}) {
+    const StudySummaryRow& s = summaryOf(summary, "combined", method);
+    EXPECT_EQ(s.images, 12) << method;
+    EXPECT_EQ(s.decoys, 12) << method;
+    // Another pattern (another tag id) in the marker's place is not the marker.
+    EXPECT_EQ(s.false_positives, 0) << method;
+  }
+  // The decoy flag survives the CSV; a CSV written before the column reads as views of the marker.
+  const auto back = fromCsv(toCsv(rows));
+  ASSERT_EQ(back.size(), rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(back[i].decoy, rows[i].decoy) << i;
+  const auto old = fromCsv(
+      "pan_deg,tilt_deg,condition,distance_m,blur_px,noise,illumination,background,method,found,position_error_mm,"
+      "orientation_error_deg,threshold,time_ms\n"
+      "0,0,even,0.600,0.700,2.000,1.000,0.500,detect,1,0.0331,0.0166,78,19.50\n"
+      "0,0,even,0.600,0.700,2.000,1.000,0.500,apriltag,0,,,,\n");
+  ASSERT_EQ(old.size(), 2u);
+  EXPECT_FALSE(old[0].decoy);
+  EXPECT_TRUE(old[0].found);
+  EXPECT_FALSE(old[1].found);
+  const std::string table = sideBySideMarkdown(summary);
+  EXPECT_NE(table.find("false positives on decoys"), std::string::npos) << table;
+  EXPECT_NE(table.find("0/12 / 0/12"), std::string::npos) << table;
+}

@@ -52,6 +52,8 @@ int run(const Args& args) {
     if (a == "--marker") config.marker = flagValue(args, i);
     else if (a == "--camera") config.camera = flagValue(args, i);
     else if (a == "--net") config.net = flagValue(args, i);
+    else if (a == "--calibration-net") config.calibration_net = flagValue(args, i);
+    else if (a == "--decoys") config.decoys = true;
     else if (a == "--output-dir" || a == "-o") out_dir = flagValue(args, i);
     else if (a == "--quick") marker::makeQuick(&config);  // flags after it still change the grid
     else if (a == "--pan") parseRange(flagValue(args, i), &config.pan_from, &config.pan_to, &config.pan_step);
@@ -122,11 +124,12 @@ int run(const Args& args) {
 
 IMAGENETS_TOOL_COMMAND(marker_study, "marker-study",
                        "marker-study [--output-dir DIR] [--conditions paper|hard|all|NAME,...] [--quick] "
-                       "[--marker M.yaml] [--camera C.yaml] [--net NET.yaml] [--pan 0:350:10] [--tilt 0:70:10] "
+                       "[--marker M.yaml] [--camera C.yaml] [--net NET.yaml] [--calibration-net NET.yaml] [--decoys] "
+                       "[--pan 0:350:10] [--tilt 0:70:10] "
                        "[--threshold 40] [--threads N] [--supersampling 4] [--seed N] [--scale-mm S] "
                        "[--from-csv STUDY.csv]",
                        "the paper's marker accuracy study (5.1, Fig. 5.2) and harder imaging (far, blur, noise, dim, "
-                       "dark wall), libapriltag beside: CSV, tables, error maps",
+                       "dark wall), libapriltag beside: CSV, tables, error maps; --decoys: false positives on decoys",
                        run);
 
 }  // namespace tool

@@ -12,6 +12,10 @@
 // and `varying` (an illumination that changes from image to image); the harder ones (issue 15)
 // take the marker out to 1.5 m, blur it up to 2 px, add noise up to 6 gray levels and dim the scene
 // down to 15 %, one at a time and all together, also in front of a dark wall.
+//
+// With `decoys`, every view is rendered a second time with a decoy in the marker's place: the same
+// black-bordered square with another, random 6 x 6 pattern (for libapriltag, a tag36h11 of another
+// id). A detection there is a false positive; it measures what a lower confidence limit costs.
 #pragma once
 
 #include <functional>
@@ -50,6 +54,7 @@ struct StudyConfig {
   int supersampling = 4;
   int threads = 0;  // parallel images; 0 = hardware threads
   unsigned seed = 2012;
+  bool decoys = false;  // also run every method on a decoy of each view (false positives)
 };
 
 // A bounded run for tests and a first look: 12 views per condition (4 pans x 3 tilts up to 70 deg),
@@ -65,11 +70,13 @@ struct StudyRow {
   double position_error_mm = 0, orientation_error_deg = 0;
   double threshold = 0;      // NaN for apriltag / not found
   double ms = 0;             // detection time (not rendering)
+  bool decoy = false;        // the view showed a decoy: `found` is a false positive
 };
 
 struct StudySummaryRow {
   std::string method, condition;
-  int images = 0, found = 0;
+  int images = 0, found = 0;  // views of the marker (decoys not counted)
+  int decoys = 0, false_positives = 0;
   double median_mm = 0, p95_mm = 0, max_mm = 0, median_deg = 0, max_deg = 0, median_ms = 0;
 };
 

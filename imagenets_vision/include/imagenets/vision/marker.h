@@ -58,6 +58,10 @@ struct DetectorOptions {
   // accurate in dim, noisy, blurred images, where single profile crossings are noisy).
   bool edge_model = false;
   int pattern_cells = 32;       // resolution of the rectified pattern compared with the marker's
+  // Image blurs (Gaussian sigma, pixels) under which a candidate the sharp pattern rejects is
+  // matched again: against the pattern rendered through the candidate's homography and blurred so.
+  // Small, far, blurred markers, whose cells smear into each other; empty: the sharp match only.
+  std::vector<double> match_blur_px;
   // Weight of the 4 inner corners in the pose fit relative to the outer ones. 2 (the ratio of
   // their distances from the centre) cancels a common shift of every edge towards the dark side,
   // as over-exposure (clipped white) causes: the outer square shrinks, the inner one grows.
