@@ -136,6 +136,24 @@ TEST(SquareMarkerDetectorBlock, BadInputsGiveNamedErrors) {
   }
 }
 
+TEST(SquareMarkerDetectorBlock, ABadBlurOfTheBlurredMatchIsALoadErrorNamingIt) {
+  const std::string yaml = R"(
+blocks:
+  detector:
+    type: imagenets/SquareMarkerDetector
+    properties: {marker: config/markers/gripper.yaml, match_blur_px: [1, -2]}
+)";
+  try {
+    Net::build(parseNetText(yaml, "test.yaml", "."));
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("detector"), std::string::npos) << what;
+    EXPECT_NE(what.find("match_blur_px"), std::string::npos) << what;
+    EXPECT_NE(what.find("-2"), std::string::npos) << what;
+  }
+}
+
 namespace {
 struct Detected {
   imagenets::MarkerDetectionConstPtr detection;

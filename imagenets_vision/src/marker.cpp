@@ -301,16 +301,19 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
   if (n_lo < 5 || n_hi < 5) return false;
   double m = 0.5 * (lo / n_lo + hi / n_hi), h = 0.5 * (hi / n_hi - lo / n_lo), s = 1.0;
   if (std::abs(h) < 3) return false;
-  double lambda = 1e-3, huber = 0;
+  double lambda = 1e-3;
   // A saturated pixel (over-exposed paper) only says the model is at least as bright: clipping
   // would otherwise pull the edge towards the dark side.
   auto residual = [](double value, double model) { return value >= 254.5 ? std::min(0.0, value - model) : value - model; };
+  auto huberCost = [](double r, double k) {
+    r = std::abs(r);
+    return r <= k ? r * r : 2 * k * r - k * k;
+  };
   auto cost = [&](double th, double cc, double mm, double hh, double ss, double k) {
     double sum = 0;
     const cv::Point2d n(std::cos(th), std::sin(th));
     for (size_t i = 0; i < q.size(); ++i) {
-      const double r = residual(v[i], mm + hh * std::erf(f * (n.dot(q[i]) - cc) / (M_SQRT2 * ss)));
-      sum += std::abs(r) <= k ? r * r : 2 * k * std::abs(r) - k * k;
+      sum += huberCost(residual(v[i], mm + hh * std::erf(f * (n.dot(q[i]) - cc) / (M_SQRT2 * ss))), k);
     }
     return sum;
   };
@@ -321,8 +324,11 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
     for (size_t i = 0; i < q.size(); ++i) {
       abs_r[i] = std::abs(residual(v[i], m + h * std::erf(f * (n.dot(q[i]) - c) / (M_SQRT2 * s))));
     }
-    std::nth_element(abs_r.begin(), abs_r.begin() + abs_r.size() / 2, abs_r.end());
-    huber = std::max(1.0, 2.0 * 1.4826 * abs_r[abs_r.size() / 2]);
+    std::vector<double> sorted_r = abs_r;
+    std::nth_element(sorted_r.begin(), sorted_r.begin() + sorted_r.size() / 2, sorted_r.end());
+    const double huber = std::max(1.0, 2.0 * 1.4826 * sorted_r[sorted_r.size() / 2]);
+    double before = 0;  // the cost at the current parameters, from the residuals just computed
+    for (const double r : abs_r) before += huberCost(r, huber);
     Eigen::Matrix<double, 5, 5> JtJ = Eigen::Matrix<double, 5, 5>::Zero();
     Eigen::Matrix<double, 5, 1> Jtr = Eigen::Matrix<double, 5, 1>::Zero();
     for (size_t i = 0; i < q.size(); ++i) {
@@ -336,7 +342,6 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
       JtJ += w * J * J.transpose();
       Jtr += w * J * r;
     }
-    const double before = cost(theta, c, m, h, s, huber);
     bool improved = false;
     for (int tries = 0; tries < 8 && !improved; ++tries) {
       Eigen::Matrix<double, 5, 5> A = JtJ;
@@ -348,7 +353,8 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
         theta += dx(0), c += dx(1), m += dx(2), h += dx(3), s = s_new;
         lambda = std::max(1e-6, lambda / 4);
         improved = true;
-        if (dx.head<2>().cwiseAbs().maxCoeff() < 1e-9) iter = 30;
+        // Converged once the line moves by less than a thousandth of a pixel.
+        if (f * (std::abs(dx(1)) + std::abs(dx(0)) * (cv::norm(0.5 * (a + b)) + len)) < 1e-3) iter = 30;
       } else {
         lambda *= 8;
       }
@@ -420,22 +426,25 @@ struct MatchTexture {
 };
 
 // The expected gray values at the sample points `norm` (normalised) of the marker seen through the
-// homography H (unit square -> normalised) with an image-space Gaussian blur of `sigma_px`, for
-// each of the 4 quarter turns of the texture. Empty when the marker is too large for blur to matter.
-std::vector<cv::Mat> blurredExpectation(const MatchTexture& match, const render::CameraModel& cam, const cv::Mat& H,
-                                        const std::vector<cv::Point2d>& norm, double sigma_px, int cells) {
+// homography H (unit square -> normalised) with each image-space Gaussian blur of `sigmas_px`
+// (ascending), for each of the 4 quarter turns of the texture. Empty when the marker is too large
+// for blur to matter.
+std::vector<std::vector<cv::Mat>> blurredExpectations(const MatchTexture& match, const render::CameraModel& cam,
+                                                      const cv::Mat& H, const std::vector<cv::Point2d>& norm,
+                                                      const std::vector<double>& sigmas_px, int cells) {
   // Undistorted pixels: blur is a few pixels, the distortion over a small marker negligible.
   const cv::Matx33d KH = cam.K * cv::Matx33d(H);
-  std::vector<cv::Point2d> corners_px;
+  std::vector<cv::Point2f> corners_px;
   for (const cv::Point2d u : {cv::Point2d(-0.3, -0.3), {1.3, -0.3}, {1.3, 1.3}, {-0.3, 1.3}}) {
     const cv::Vec3d p = KH * cv::Vec3d(u.x, u.y, 1.0);
     if (!(p[2] > 0)) return {};
     corners_px.emplace_back(p[0] / p[2], p[1] / p[2]);
   }
-  const cv::Rect2d box = cv::boundingRect(std::vector<cv::Point2f>(corners_px.begin(), corners_px.end()));
-  const double pad = 3 * sigma_px + 2, side = std::max(box.width, box.height) + 2 * pad;
+  const double max_sigma = *std::max_element(sigmas_px.begin(), sigmas_px.end());
+  const cv::Rect2d box = cv::boundingRect(corners_px);
+  const double pad = 3 * max_sigma + 2, side = std::max(box.width, box.height) + 2 * pad;
   if (side > 400) return {};  // cells of many pixels: the sharp match is right
-  const double k = std::max(1.0, std::min(4.0, 160.0 / side));  // supersampling of the rendered patch
+  const double k = std::max(1.0, std::min(4.0, 96.0 / side));  // supersampling of the rendered patch
   const int size = static_cast<int>(std::ceil(side * k));
   // texture px -> unit square -> normalised -> pixels -> patch
   const double t = MatchTexture::kTextureSide, o = match.origin;
@@ -447,28 +456,33 @@ std::vector<cv::Mat> blurredExpectation(const MatchTexture& match, const render:
     const cv::Vec3d p = cam.K * cv::Vec3d(q.x, q.y, 1.0);
     at.emplace_back(k * (p[0] / p[2] - box.x + pad), k * (p[1] / p[2] - box.y + pad));
   }
-  std::vector<cv::Mat> out;
+  std::vector<double> sorted(sigmas_px);
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<std::vector<cv::Mat>> out(sorted.size());  // [blur][quarter turn]
   cv::Mat turned = match.texture;
   for (int r = 0; r < 4; ++r) {
     cv::Mat patch;
     cv::warpPerspective(turned, patch, cv::Mat(M), cv::Size(size, size), cv::INTER_AREA, cv::BORDER_CONSTANT,
                         cv::Scalar(255));
-    cv::GaussianBlur(patch, patch, cv::Size(0, 0), sigma_px * k);
-    cv::Mat expected(cells, cells, CV_64F);
-    for (int i = 0; i < cells * cells; ++i) expected.at<double>(i / cells, i % cells) = bilinear(patch, at[i].x, at[i].y);
-    out.push_back(expected);
+    double done = 0;  // blur already applied: each larger one adds only what is missing
+    for (size_t j = 0; j < sorted.size(); ++j) {
+      cv::GaussianBlur(patch, patch, cv::Size(0, 0), k * std::sqrt(sorted[j] * sorted[j] - done * done));
+      done = sorted[j];
+      cv::Mat expected(cells, cells, CV_64F);
+      for (int i = 0; i < cells * cells; ++i) expected.at<double>(i / cells, i % cells) = bilinear(patch, at[i].x, at[i].y);
+      out[j].push_back(expected);
+    }
     cv::rotate(turned, turned, cv::ROTATE_90_COUNTERCLOCKWISE);
   }
   return out;
 }
 
 // Rectifies the inner area through the homography of the outer corners and matches the pattern.
-// With `blurred` (DetectorOptions::match_blur_px), a candidate the sharp pattern rejects is matched
-// again against the pattern as a blurred camera would show it (far, small markers: every cell a
-// pixel or two, smeared into its neighbours).
+// With `blurred`, against the pattern as a camera blurring by each of `blurs` (px) shows it
+// instead (far, small markers: every cell a pixel or two, smeared into its neighbours).
 void matchPattern(const cv::Mat& gray, const render::CameraModel& cam, const MarkerDescription& marker,
                   const cv::Mat& pattern_cells, int cells, const MatchTexture* blurred,
-                  const DetectorOptions& options, Candidate* cand) {
+                  const std::vector<double>& blurs, Candidate* cand) {
   // Marker-plane square [0,1]^2 (u right, v down as in the pattern image) onto the image quad.
   const std::vector<cv::Point2f> unit{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   std::vector<cv::Point2f> quad(cand->outer_norm.begin(), cand->outer_norm.end());
@@ -485,19 +499,19 @@ void matchPattern(const cv::Mat& gray, const render::CameraModel& cam, const Mar
   cv::Mat patch(cells, cells, CV_64F);
   for (int i = 0; i < cells * cells; ++i) patch.at<double>(i / cells, i % cells) = bilinear(gray, px[i].x, px[i].y);
   cand->confidence = -1;
-  cv::Mat rotated = patch;
-  for (int k = 0; k < 4; ++k) {
-    const double ncc = zeroMeanNcc(rotated, pattern_cells);
-    if (ncc > cand->confidence) cand->confidence = ncc, cand->rotation = k;
-    cv::rotate(rotated, rotated, cv::ROTATE_90_CLOCKWISE);
-  }
-  if (blurred && cand->confidence < options.min_confidence) {
-    for (const double sigma : options.match_blur_px) {
-      const std::vector<cv::Mat> expected = blurredExpectation(*blurred, cam, H, norm, sigma, cells);
-      for (size_t k = 0; k < expected.size(); ++k) {
-        const double ncc = zeroMeanNcc(patch, expected[k]);
+  if (blurred) {
+    for (const auto& per_blur : blurredExpectations(*blurred, cam, H, norm, blurs, cells)) {
+      for (size_t k = 0; k < per_blur.size(); ++k) {
+        const double ncc = zeroMeanNcc(patch, per_blur[k]);
         if (ncc > cand->confidence) cand->confidence = ncc, cand->rotation = static_cast<int>(k);
       }
+    }
+  } else {
+    cv::Mat rotated = patch;
+    for (int k = 0; k < 4; ++k) {
+      const double ncc = zeroMeanNcc(rotated, pattern_cells);
+      if (ncc > cand->confidence) cand->confidence = ncc, cand->rotation = k;
+      cv::rotate(rotated, rotated, cv::ROTATE_90_CLOCKWISE);
     }
   }
   cand->confidence = std::max(0.0, std::min(1.0, cand->confidence));
@@ -545,6 +559,7 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
 
   Candidate best;
   best.confidence = -1;
+  std::vector<Candidate> rescuable;
   for (size_t ci = 0; ci < contours.size(); ++ci) {
     if (hierarchy[ci][3] >= 0) continue;  // a hole's boundary, not a region's outline
     const auto& contour = contours[ci];
@@ -573,7 +588,15 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
     }
     if (!refined) continue;
     if (options.refine_passes == 0) cand.outer_norm = normalise(outer_px, camera);
-    matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, blurred.get(), options, &cand);
+    matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, nullptr, {}, &cand);
+    if (cand.confidence > best.confidence) best = cand;
+    // Below 0.1 a candidate does not look like the marker at all (another pattern matches ~0.1).
+    if (blurred && cand.confidence > 0.1) rescuable.push_back(cand);
+  }
+  // No candidate matches the sharp pattern: match those that looked a little like it again, blurred.
+  for (size_t i = 0; best.confidence < options.min_confidence && i < rescuable.size(); ++i) {
+    Candidate& cand = rescuable[i];
+    matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, blurred.get(), options.match_blur_px, &cand);
     if (cand.confidence > best.confidence) best = cand;
   }
   if (best.confidence < options.min_confidence || best.outer_norm.empty()) {
