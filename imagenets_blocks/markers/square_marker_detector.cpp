@@ -40,6 +40,9 @@ class SquareMarkerDetector : public Block {
         .range(0.0, 10000.0);
     addProperty<bool>("edge_model", false,
                       "fit a blurred-edge model to every pixel along each outer edge (dim, noisy, blurred images)");
+    addProperty<double>("edge_model_max_side_px", 0.0,
+                        "the edge model only for markers whose every side is shorter (px; 0: any size)")
+        .range(0.0, 100000.0);
     addProperty<std::vector<double>>("match_blur_px", std::vector<double>{},
                                      "image blurs (sigma, px) under which a rejected candidate's pattern is matched again "
                                      "(small, far, blurred markers); empty: sharp match only");
@@ -67,6 +70,7 @@ class SquareMarkerDetector : public Block {
     options.refine_passes = ctx.property<int>("refine_passes");
     options.min_inner_side_px = ctx.property<double>("min_inner_side_px");
     options.edge_model = ctx.property<bool>("edge_model");
+    options.edge_model_max_side_px = ctx.property<double>("edge_model_max_side_px");
     options.match_blur_px = checkedBlurs(ctx.property<std::vector<double>>("match_blur_px"));
     Eigen::Isometry3d hint;
     if (const auto pose_hint = ctx.input<geometry_msgs::PoseStamped>("pose_hint")) {

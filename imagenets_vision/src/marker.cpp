@@ -607,8 +607,13 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   // With the edge model the outer corners alone give the better pose, except on over-exposed
   // paper, where the inner corners' opposite shift cancels the outer ones' (inner_weight).
   bool clipped = false;
-  const bool edge_fitted =
-      options.edge_model && options.refine_passes > 0 && fitOuterEdges(gray, camera, &best.outer_norm, &clipped);
+  bool small = true;
+  if (options.edge_model_max_side_px > 0) {
+    const std::vector<cv::Point2d> corners = distort(best.outer_norm, camera);
+    for (int k = 0; k < 4; ++k) small = small && cv::norm(corners[k] - corners[(k + 1) % 4]) < options.edge_model_max_side_px;
+  }
+  const bool edge_fitted = options.edge_model && small && options.refine_passes > 0 &&
+                           fitOuterEdges(gray, camera, &best.outer_norm, &clipped);
 
   // Put the corners in marker order: after k clockwise quarter turns of the rectified patch the
   // marker's top-left corner is image corner (4 - k) % 4.

@@ -188,6 +188,28 @@ TEST(MarkerDetector, AFarBlurredMarkerIsMatchedAgainstItsBlurredPattern) {
   }
 }
 
+TEST(MarkerDetector, TheEdgeModelCanBeKeptToSmallMarkers) {
+  // edge_model_max_side_px: near (sides ~140 px) the profile refinement's corners are kept, far
+  // (sides ~60 px) the edge model's.
+  const render::Renderer r(friendCamera(), 3);
+  marker::DetectorOptions profile, edge, small_only;
+  profile.refine_passes = edge.refine_passes = 4;
+  edge.edge_model = true;
+  small_only = edge;
+  small_only.edge_model_max_side_px = 110;
+  for (const double distance : {0.6, 1.3}) {
+    const Eigen::Isometry3d truth = render::lookAtOriginPose(distance, 30 * kDeg, 20 * kDeg);
+    const Shot s = shoot(r, gripper(), truth, 60, 0.4, 1.2);
+    const Detection a = marker::detect(s.gray, s.binary, friendCamera(), gripper(), profile);
+    const Detection b = marker::detect(s.gray, s.binary, friendCamera(), gripper(), edge);
+    const Detection c = marker::detect(s.gray, s.binary, friendCamera(), gripper(), small_only);
+    ASSERT_TRUE(a.found && b.found && c.found) << distance;
+    EXPECT_GT(cv::norm(a.points[0] - b.points[0]), 1e-6) << distance;  // the two refinements differ
+    const Detection& expected = distance < 1 ? a : b;
+    for (int i = 0; i < 8; ++i) EXPECT_EQ(c.points[i], expected.points[i]) << "distance " << distance << " point " << i;
+  }
+}
+
 TEST(MarkerDetector, LensDistortionIsTakenIntoAccount) {
   render::CameraModel cam = friendCamera();
   cam.D = {-0.35, 0.2, 0.0, 0.0, 0.0};  // strong barrel distortion

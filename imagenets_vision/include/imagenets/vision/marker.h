@@ -57,6 +57,10 @@ struct DetectorOptions {
   // After the refinement, fit a blurred-step model to every pixel along each outer edge (more
   // accurate in dim, noisy, blurred images, where single profile crossings are noisy).
   bool edge_model = false;
+  // The edge model only for markers whose every side is shorter than this (pixels; 0: any size).
+  // Short edges give the profile refinement few, noisy crossings; long ones enough, and a profile
+  // fit shrugs off a reflection across part of an edge, which pulls the edge model's band.
+  double edge_model_max_side_px = 0;
   int pattern_cells = 32;       // resolution of the rectified pattern compared with the marker's
   // Image blurs (Gaussian sigma, pixels) under which a candidate the sharp pattern rejects is
   // matched again: against the pattern rendered through the candidate's homography and blurred so.
