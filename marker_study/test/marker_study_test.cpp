@@ -80,18 +80,15 @@ TEST(MarkerStudy, HarderConditionsMeetTheTargetsAgainstAprilTag) {
     const std::string what = t.condition + " " + t.method + ": found " + std::to_string(ours.found) + "/" +
                              std::to_string(ours.images) + " vs " + std::to_string(april.found) + ", median " +
                              std::to_string(ours.median_mm) + " vs " + std::to_string(april.median_mm) + " mm";
-    // The default detection finds the marker whenever libapriltag does, in every condition.
-    if (t.method == "detect") EXPECT_TRUE(t.rate_ok) << what;
+    EXPECT_TRUE(t.median_ok) << what;
     // Everything at once (down to 15 % light at up to 1.5 m with up to 6 levels of noise): the
-    // default net's edge model keeps the median error below half of libapriltag's; the calibration
-    // net (no edge model yet, docs/marker-study.md) does not. Every single harder condition is met
-    // by both nets.
-    if (t.condition == "combined") {
-      if (t.method == "detect") EXPECT_TRUE(t.median_ok) << what;
+    // calibration's coarser threshold sweep misses one of these 12 views (tilt 70 deg, 1.26 m, 23 %
+    // light); over the full study's 144 it finds more than libapriltag (docs/marker-study.md).
+    if (t.condition == "combined" && t.method == "calibration") {
+      EXPECT_GE(ours.found, ours.images - 1) << what;
       continue;
     }
     EXPECT_TRUE(t.rate_ok) << what;
-    EXPECT_TRUE(t.median_ok) << what;
   }
   const std::string table = sideBySideMarkdown(summary);
   EXPECT_NE(table.find("| combined |"), std::string::npos) << table;
