@@ -179,6 +179,26 @@ TEST(Tool, DetectByDefaultFindsTheMarkerInADimSceneThatThePapersRangeMisses) {
   expectContains(r.output, "--coarse-to-fine orders a --feedback FROM:TO:STEP range");
 }
 
+TEST(Tool, MarkerStudyWithDecoysCountsFalsePositives) {
+  // Three views (tilt 0, 35 and 70 deg at pan 15) of the paper's even lighting, each also with a decoy in
+  // the marker's place; the calibration's net given by --calibration-net.
+  const std::string dir = temp("decoys");
+  const Result r = tool("marker-study --conditions even --quick --pan 15:15:90 --decoys --threads 2 "
+                        "--calibration-net config/nets/calibration_marker_detection.yaml -o " + dir, true);
+  ASSERT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "false positives on decoys: ours / apriltag |");
+  expectContains(r.output, "| even | detect | 100.0 % / 100.0 % |");
+  expectContains(r.output, "| even | calibration | 100.0 % / 100.0 % |");
+  expectContains(r.output, "| 0/3 / 0/3 |");  // no decoy taken for the marker
+  std::ifstream csv(dir + "/study.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.substr(header.size() - 6), ",decoy") << header;
+  const Result bad = tool("marker-study --quick --calibration-net config/nets/no_such_net.yaml -o " + dir);
+  EXPECT_NE(bad.status, 0);
+  expectContains(bad.output, "no_such_net.yaml");
+}
+
 TEST(Tool, GraphDrawsAnSvg) {
   const std::string svg = temp("net.svg");
   Result r = tool("graph config/nets/feedback_threshold.yaml -o " + svg);
