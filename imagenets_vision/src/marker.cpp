@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <memory>
 #include <mutex>
 #include <stdexcept>
 
@@ -548,8 +547,6 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   cv::resize(marker.pattern, pattern_cells, cv::Size(options.pattern_cells, options.pattern_cells), 0, 0,
              cv::INTER_AREA);
   pattern_cells.convertTo(pattern_cells, CV_64F);
-  std::unique_ptr<MatchTexture> blurred;
-  if (!options.match_blur_px.empty()) blurred.reset(new MatchTexture(marker));
 
   // Dark regions (the border is below the threshold) and their outer boundaries.
   cv::Mat dark = binary == 0;
@@ -591,13 +588,16 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
     matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, nullptr, {}, &cand);
     if (cand.confidence > best.confidence) best = cand;
     // Below 0.1 a candidate does not look like the marker at all (another pattern matches ~0.1).
-    if (blurred && cand.confidence > 0.1) rescuable.push_back(cand);
+    if (!options.match_blur_px.empty() && cand.confidence > 0.1) rescuable.push_back(cand);
   }
   // No candidate matches the sharp pattern: match those that looked a little like it again, blurred.
-  for (size_t i = 0; best.confidence < options.min_confidence && i < rescuable.size(); ++i) {
-    Candidate& cand = rescuable[i];
-    matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, blurred.get(), options.match_blur_px, &cand);
-    if (cand.confidence > best.confidence) best = cand;
+  if (best.confidence < options.min_confidence && !rescuable.empty()) {
+    const MatchTexture blurred(marker);
+    for (size_t i = 0; best.confidence < options.min_confidence && i < rescuable.size(); ++i) {
+      Candidate& cand = rescuable[i];
+      matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, &blurred, options.match_blur_px, &cand);
+      if (cand.confidence > best.confidence) best = cand;
+    }
   }
   if (best.confidence < options.min_confidence || best.outer_norm.empty()) {
     result.confidence = std::max(0.0, best.confidence);

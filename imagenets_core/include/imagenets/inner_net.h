@@ -17,12 +17,17 @@ struct InnerExecutorRef {
 class InnerNet {
  public:
   virtual ~InnerNet() = default;
-  // The inner executor (null before configure()); its public API is thread-safe.
-  virtual const Executor* innerExecutor() const = 0;
-  // Every net the block runs inside (the inner net and, e.g., a sub-net's until net), to change
-  // them (e.g. a property of their blocks: net_wide_property.h) or read their outputs between
-  // runs; none before configure().
-  virtual std::vector<InnerExecutorRef> innerExecutors() = 0;
+  // Every net the block runs inside (the inner net, path "", and e.g. a sub-net's until net), to
+  // change them (e.g. a property of their blocks: net_wide_property.h) or read their outputs
+  // between runs; none before configure(). Their public API is thread-safe.
+  virtual std::vector<InnerExecutorRef> innerExecutors() const = 0;
+  // The inner net's executor (path ""); null before configure().
+  const Executor* innerExecutor() const {
+    for (const InnerExecutorRef& net : innerExecutors()) {
+      if (net.path.empty()) return net.executor;
+    }
+    return nullptr;
+  }
 };
 
 }  // namespace imagenets

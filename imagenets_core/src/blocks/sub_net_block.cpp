@@ -281,7 +281,7 @@ void SubNetBlock::process(Context& ctx) {
   }
 }
 
-std::vector<InnerExecutorRef> SubNetBlock::innerExecutors() {
+std::vector<InnerExecutorRef> SubNetBlock::innerExecutors() const {
   std::vector<InnerExecutorRef> nets;
   if (executor_) nets.push_back({"", executor_.get()});
   if (until_) nets.push_back({"until", until_.get()});

@@ -40,8 +40,7 @@ class SubNetBlock : public Block, public InnerNet {
   void process(Context& ctx) override;
 
   const Net* subNet() const override;
-  const Executor* innerExecutor() const override { return executor_.get(); }
-  std::vector<InnerExecutorRef> innerExecutors() override;
+  std::vector<InnerExecutorRef> innerExecutors() const override;
 
  private:
   struct InPort {
