@@ -486,6 +486,7 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
     } else if (e.kind == imagenets::RunEventKind::Repetition && e.block == "samples") {
       done = e.index;
       *detection_time += std::max(left_ms, right_ms) / 1000.0;  // both images in parallel
+      const double sample_left_ms = left_ms, sample_right_ms = right_ms;
       left_ms = right_ms = 0;
       if (until && progress && e.index >= requested && e.index < samples &&
           until->stats("solve").status == imagenets::BlockStatus::Ok) {
@@ -511,9 +512,9 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
         const Sample s = fromMsg(*sample);
         publishDetections(pair, s);
         *last_pair = pair;
-        ROS_INFO("sample %d/%d: left %s (conf %.2f), right %s (conf %.2f)", done, samples,
-                 s.left.found ? "found" : "not found", s.left.confidence, s.right.found ? "found" : "not found",
-                 s.right.confidence);
+        ROS_INFO("sample %d/%d: left %s (conf %.2f, %.0f ms), right %s (conf %.2f, %.0f ms)", done, samples,
+                 s.left.found ? "found" : "not found", s.left.confidence, sample_left_ms,
+                 s.right.found ? "found" : "not found", s.right.confidence, sample_right_ms);
       } catch (const std::exception&) {
         // A sample net without these outputs (e.g. the replay's) draws no pictures.
       }

@@ -231,8 +231,10 @@ bool refineQuad(const cv::Mat& gray, const render::CameraModel& cam, const std::
     const std::vector<cv::Point2d> edge_norm = normalise(edge_px, cam);
     std::vector<cv::Point2f> pts(edge_norm.begin(), edge_norm.end());
     cv::Vec4f fit;
-    // Huber: a few samples spoiled by pattern cells touching the border or noise weigh less.
-    cv::fitLine(pts, fit, cv::DIST_HUBER, 0, 1e-7, 1e-7);
+    // Least squares. (cv::fitLine's Huber gave the same line here at ~20x the cost: its constant
+    // 1.345 is in the points' units, normalised coordinates, where every residual is far below it,
+    // and it restarts from 20 random subsets.)
+    cv::fitLine(pts, fit, cv::DIST_L2, 0, 0, 0);
     lines[k] = lineFrom(fit);
   }
   corners_norm->resize(4);
