@@ -75,7 +75,7 @@ TEST(CalibrationMarkerNet, FindsTheMarkerWhereItIsOtsuFirstAndStopsWhenGood) {
     EXPECT_EQ(trace->values.front(), cv::threshold(pixels, ignored, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU)) << what;
     // ...and a good first detection ends it there (`good_enough`), else the sweep runs.
     if (trace->stop_reason == "good_enough") {
-      EXPECT_GE(trace->chosen_score, 0.9) << what;
+      EXPECT_GE(trace->chosen_score, 0.5) << what;
     } else {
       EXPECT_GT(trace->trials, 1u) << what;
       ++swept;
