@@ -56,10 +56,15 @@ TEST(CalibrationMarkerNet, FindsTheMarkerWhereItIsOtsuFirstAndStopsWhenGood) {
     const std::string what = "view " + std::to_string(i) + (v.reflection ? " (reflection)" : "");
     const MarkerObservation o = net.detect(message(v), v.info, v.predicted);
     // The region around the prediction holds the marker: the whole image is searched only when
-    // the marker was not found there (a reflection over it).
+    // the marker was not found there (a reflection over it; the whole image's own Otsu threshold
+    // and sweep may still find it).
     const auto region = net.lastRegionTrace();
     ASSERT_TRUE(region) << what;
-    EXPECT_EQ(region->values, (o.found ? std::vector<double>{300} : std::vector<double>{300, 0})) << what;
+    if (v.reflection && o.found) {
+      EXPECT_EQ(region->values.front(), 300) << what;
+    } else {
+      EXPECT_EQ(region->values, (o.found ? std::vector<double>{300} : std::vector<double>{300, 0})) << what;
+    }
     if (!o.found) {
       EXPECT_TRUE(v.reflection) << what << ": " << o.reason;  // only reflections may hide it
       continue;
