@@ -56,15 +56,10 @@ TEST(CalibrationMarkerNet, FindsTheMarkerWhereItIsOtsuFirstAndStopsWhenGood) {
     const std::string what = "view " + std::to_string(i) + (v.reflection ? " (reflection)" : "");
     const MarkerObservation o = net.detect(message(v), v.info, v.predicted);
     // The region around the prediction holds the marker: the whole image is searched only when
-    // the marker was not found there (a reflection over it; the whole image's own Otsu threshold
-    // and sweep may still find it).
+    // the marker was not found there (a reflection over it).
     const auto region = net.lastRegionTrace();
     ASSERT_TRUE(region) << what;
-    if (v.reflection && o.found) {
-      EXPECT_EQ(region->values.front(), 300) << what;
-    } else {
-      EXPECT_EQ(region->values, (o.found ? std::vector<double>{300} : std::vector<double>{300, 0})) << what;
-    }
+    EXPECT_EQ(region->values, (o.found ? std::vector<double>{300} : std::vector<double>{300, 0})) << what;
     if (!o.found) {
       EXPECT_TRUE(v.reflection) << what << ": " << o.reason;  // only reflections may hide it
       continue;
@@ -89,6 +84,10 @@ TEST(CalibrationMarkerNet, FindsTheMarkerWhereItIsOtsuFirstAndStopsWhenGood) {
     EXPECT_EQ(o.points.size(), 8u) << what;
     EXPECT_LE(o.reprojection_error, 1.0) << what;
     if (v.reflection) {
+      // A reflection may bend the border, but what is found is the marker, not some other dark
+      // quadrilateral the search stopped at (the calibration's gates reject a few millimetres;
+      // a wrong object would be metres off).
+      EXPECT_LT((o.pose.translation() - v.truth.translation()).norm(), 0.02) << what;
       ++reflected;
       continue;
     }

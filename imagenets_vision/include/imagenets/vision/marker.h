@@ -52,7 +52,7 @@ render::Plane markerPlane(const MarkerDescription& marker, const Eigen::Isometry
 
 struct DetectorOptions {
   double min_confidence = 0.5;  // below: found = false
-  double min_side_px = 12.0;    // candidate quads with a shorter side are ignored
+  double min_side_px = 12.0;    // quads with a shorter side (contour or located square) are ignored
   int refine_passes = 2;        // sub-pixel edge refinement passes on the gray image (0 = none)
   // After the refinement, fit a blurred-step model to every pixel along each outer edge (more
   // accurate in dim, noisy, blurred images, where single profile crossings are noisy).
