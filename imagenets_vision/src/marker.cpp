@@ -17,6 +17,7 @@
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <utility>
 
 #include <boost/filesystem.hpp>
 #include <opencv2/calib3d.hpp>
@@ -417,9 +418,21 @@ struct Candidate {
   int rotation = 0;
 };
 
-// The blurred match is tried only on markers with a side shorter than this (pixels). The far
-// views it was made for have sides of 20..60 px.
+// The blurred match is tried only on markers with a side shorter than this (pixels): blur smears
+// cells into each other only where the marker is narrow in the image (far, or seen steeply). The
+// far views it was made for have sides of 20..60 px; on a close marker a reflection spoils, it
+// would cost a few milliseconds at every threshold tried.
 constexpr double kBlurMattersBelowPx = 80;
+
+// The shortest and the longest side of a quadrilateral (pixels).
+std::pair<double, double> sideRange(const std::vector<cv::Point2d>& quad) {
+  std::pair<double, double> range(std::numeric_limits<double>::infinity(), 0.0);
+  for (size_t k = 0; k < quad.size(); ++k) {
+    const double side = cv::norm(quad[k] - quad[(k + 1) % quad.size()]);
+    range = {std::min(range.first, side), std::max(range.second, side)};
+  }
+  return range;
+}
 // A blurred match counts from this confidence on, even where the sharp one needs less: the marker
 // matches at >= 0.83, other patterns at up to 0.59 (random ones <= 0.55), and other dark
 // quadrilaterals of the calibration's scenes at 0.60 (docs/calibration.md).
@@ -439,24 +452,12 @@ struct MatchTexture {
 // The expected gray values at the sample points `norm` (normalised) of the marker seen through the
 // homography H (unit square -> normalised) with each image-space Gaussian blur of `sigmas_px`
 // (ascending), for each of the 4 quarter turns of the texture. Empty when the marker is too large
-// for blur to matter.
+// for the patch.
 std::vector<std::vector<cv::Mat>> blurredExpectations(const MatchTexture& match, const render::CameraModel& cam,
                                                       const cv::Mat& H, const std::vector<cv::Point2d>& norm,
                                                       const std::vector<double>& sigmas_px, int cells) {
   // Undistorted pixels: blur is a few pixels, the distortion over a small marker negligible.
   const cv::Matx33d KH = cam.K * cv::Matx33d(H);
-  // Blur smears cells into each other only where the marker is narrow in the image (far, or seen
-  // steeply): with every side longer, the sharp match is right, and rendering the patches would
-  // cost a reflection-spoiled close marker a few milliseconds at every threshold tried.
-  std::vector<cv::Point2d> square_px;
-  for (const cv::Point2d u : {cv::Point2d(0, 0), {1, 0}, {1, 1}, {0, 1}}) {
-    const cv::Vec3d p = KH * cv::Vec3d(u.x, u.y, 1.0);
-    if (!(p[2] > 0)) return {};
-    square_px.emplace_back(p[0] / p[2], p[1] / p[2]);
-  }
-  double shortest = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 4; ++i) shortest = std::min(shortest, cv::norm(square_px[i] - square_px[(i + 1) % 4]));
-  if (shortest > kBlurMattersBelowPx) return {};
   std::vector<cv::Point2f> corners_px;
   for (const cv::Point2d u : {cv::Point2d(-0.3, -0.3), {1.3, -0.3}, {1.3, 1.3}, {-0.3, 1.3}}) {
     const cv::Vec3d p = KH * cv::Vec3d(u.x, u.y, 1.0);
@@ -610,14 +611,15 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
     if (!refined) continue;
     // The limit holds for the located square too: a speck whose contour passed it can shrink to
     // a few pixels, and a few pixels match a blurred pattern about as well as anything.
-    bool large = true;
-    for (int k = 0; k < 4; ++k) large = large && cv::norm(outer_px[k] - outer_px[(k + 1) % 4]) >= options.min_side_px;
-    if (!large) continue;
+    const double shortest_px = sideRange(outer_px).first;
+    if (shortest_px < options.min_side_px) continue;
     if (options.refine_passes == 0) cand.outer_norm = normalise(outer_px, camera);
     matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, nullptr, {}, &cand);
     if (cand.confidence > best.confidence) best = cand;
     // Below 0.1 a candidate does not look like the marker at all (another pattern matches ~0.1).
-    if (!options.match_blur_px.empty() && cand.confidence > 0.1) rescuable.push_back(cand);
+    if (!options.match_blur_px.empty() && cand.confidence > 0.1 && shortest_px < kBlurMattersBelowPx) {
+      rescuable.push_back(cand);
+    }
   }
   // No candidate matches the sharp pattern: match those that looked a little like it again, blurred.
   if (best.confidence < options.min_confidence && !rescuable.empty()) {
@@ -637,11 +639,8 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   // With the edge model the outer corners alone give the better pose, except on over-exposed
   // paper, where the inner corners' opposite shift cancels the outer ones' (inner_weight).
   bool clipped = false;
-  bool small = true;
-  if (options.edge_model_max_side_px > 0) {
-    const std::vector<cv::Point2d> corners = distort(best.outer_norm, camera);
-    for (int k = 0; k < 4; ++k) small = small && cv::norm(corners[k] - corners[(k + 1) % 4]) < options.edge_model_max_side_px;
-  }
+  const bool small =
+      options.edge_model_max_side_px <= 0 || sideRange(distort(best.outer_norm, camera)).second < options.edge_model_max_side_px;
   const bool edge_fitted = options.edge_model && small && options.refine_passes > 0 &&
                            fitOuterEdges(gray, camera, &best.outer_norm, &clipped);
 
