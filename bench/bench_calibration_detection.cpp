@@ -94,7 +94,9 @@ Figures measure(const std::vector<CalibrationView>& views, const Detect& detect)
 
 }  // namespace
 
-int main() {
+// Argument (optional): run only the variants whose name contains it (e.g. for a profiler).
+int main(int argc, char** argv) {
+  const char* only_variant = argc > 1 ? argv[1] : nullptr;
   const CalibrationViews data = renderCalibrationViews();
   const std::vector<CalibrationView>& views = data.views;
   int reflections = 0;
@@ -145,6 +147,18 @@ int main() {
   variants.push_back({"region 120 px, else the whole image", variant(unchanged, true, {120, 0})});
   variants.push_back({"region always the whole image", variant(unchanged, true, {0})});
   variants.push_back({"always the coarse-to-fine sweep", variant(always_sweep, true)});
+  // The threshold grid tried downwards from `from` (after Otsu): a reflection brightens part of the
+  // marker's border, which then stays dark only under a high threshold.
+  auto downwards_from = [](double from) {
+    return [from](imagenets::FeedbackSpec& f) {
+      f.to = std::min(*f.from, *f.to);
+      f.from = from;
+      f.values.clear();
+      for (double v = from; v >= *f.to - 1e-9; v -= *f.step) f.values.push_back(v);
+    };
+  };
+  variants.push_back({"grid downwards 190..10 (Otsu first, stop if good)", variant(downwards_from(190), true)});
+  variants.push_back({"grid downwards 220..10 (Otsu first, stop if good)", variant(downwards_from(220), true)});
   // Candidates given as a list, tried in order, no first guess, no early stop.
   auto only = [](std::vector<double> values) {
     return [values](imagenets::FeedbackSpec& f) {
@@ -172,6 +186,7 @@ int main() {
                 f.clean_worst_mm, f.disturbed_found, f.disturbed, f.disturbed_passed, f.gated_worst_mm);
   };
   for (const auto& v : variants) {
+    if (only_variant && v.name.find(only_variant) == std::string::npos) continue;
     measure(views, v.detect);  // warm-up (allocations, caches)
     print(v.name, measure(views, v.detect));
   }

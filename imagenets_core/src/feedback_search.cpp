@@ -91,10 +91,10 @@ std::vector<double> FeedbackSearch::plan() {
         return values_;
       }
       if (explicit_grid) {
-        // The grid from `from` in coarse steps; `to` itself only when it lies on the grid.
+        // The grid from `from` towards `to` in coarse steps; `to` itself only when it lies on the grid.
         phase_ = Phase::Fine;
         std::vector<double> grid;
-        const double from = *spec_.from, to = *spec_.to, step = *spec_.coarse_step;
+        const double from = *spec_.from, to = *spec_.to, step = to < from ? -*spec_.coarse_step : *spec_.coarse_step;
         const auto n = static_cast<long>(std::floor((to - from) / step + 1e-9));
         for (long k = 0; k <= n; ++k) grid.push_back(normalise_(from + step * static_cast<double>(k)));
         return grid;

@@ -11,9 +11,9 @@
 //
 // Strategies (FeedbackSpec): the `initial` candidates first (one batch), then
 // - exhaustive: every candidate (one batch);
-// - coarse_to_fine with `coarse_step` and `fine_radius`: the grid from, from + coarse_step, ... <= to
-//   (one batch), then centre +- k * step for k = 1 .. fine_radius / step around the best so far,
-//   within from..to (one batch);
+// - coarse_to_fine with `coarse_step` and `fine_radius`: the grid from, from +- coarse_step, ...
+//   towards to (one batch), then centre +- k * step for k = 1 .. fine_radius / step around the
+//   best so far, within from..to (one batch);
 // - coarse_to_fine without them: a grid of about sqrt(N) candidates, then halving the spacing
 //   around the best (two candidates per batch); everything if the grid finds no score.
 // A score that is NaN or infinite is invalid. The best is the highest (minimize: lowest) valid

@@ -199,12 +199,11 @@ struct Parser {
         f.step = node["step"] ? feedbackNumber(node, where, "step") : std::optional<double>(1.0);
         if (!f.from || !f.to || !f.step) return;
         if (!(*f.step > 0)) return error(node["step"] ? node["step"] : node, where + "step " + text(node["step"]) + " must be > 0");
-        if (*f.to < *f.from) {
-          return error(node, where + "range from " + text(node["from"]) + " to " + text(node["to"]) + " is inverted");
-        }
-        // Count steps with a tolerance so 40..80 step 0.1 ends at 80, not 79.9.
-        size_t n = static_cast<size_t>(std::floor((*f.to - *f.from) / *f.step + 1e-9)) + 1;
-        for (size_t i = 0; i < n; ++i) f.values.push_back(*f.from + *f.step * static_cast<double>(i));
+        // A range runs from `from` towards `to`, downwards when `to` is below `from` (the candidates
+        // most likely to succeed first). Count steps with a tolerance so 40..80 step 0.1 ends at 80.
+        const double direction = *f.to < *f.from ? -1.0 : 1.0;
+        size_t n = static_cast<size_t>(std::floor(std::abs(*f.to - *f.from) / *f.step + 1e-9)) + 1;
+        for (size_t i = 0; i < n; ++i) f.values.push_back(*f.from + direction * *f.step * static_cast<double>(i));
       }
       if (node["initial"]) parseInitial(node["initial"], where, f);
       if (node["good_enough"]) f.good_enough = feedbackNumber(node, where, "good_enough");

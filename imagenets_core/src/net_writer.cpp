@@ -42,7 +42,7 @@ YAML::Node feedbackNode(const FeedbackSpec& f) {
   YAML::Node node(YAML::NodeType::Map);
   node["property"] = f.property;
   const auto& v = f.values;
-  bool even = v.size() >= 2 && v.back() > v.front();
+  bool even = v.size() >= 2 && v.back() != v.front();  // ascending or descending
   double step = 0;
   if (even) {
     step = (v.back() - v.front()) / static_cast<double>(v.size() - 1);
@@ -59,7 +59,7 @@ YAML::Node feedbackNode(const FeedbackSpec& f) {
   if (even) {
     node["from"] = formatNumber(v.front());
     node["to"] = formatNumber(v.back());
-    node["step"] = formatNumber(step);
+    node["step"] = formatNumber(std::abs(step));
   } else {
     YAML::Node values(YAML::NodeType::Sequence);
     for (double x : v) values.push_back(formatNumber(x));

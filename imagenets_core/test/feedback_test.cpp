@@ -192,8 +192,7 @@ blocks:
 links: [x.value -> y.in, y.out -> p.x]
 )"),
       "score port y.feedback_trace is imagenets/FeedbackTrace, not std_msgs/Float64");
-  // Empty or inverted range, step <= 0, unknown score block.
-  has(loadError(sweepNet("{property: value, from: 5, to: 1, score: score.score}")), "range from 5 to 1 is inverted");
+  // Step <= 0, empty values, unknown score block.
   has(loadError(sweepNet("{property: value, from: 0, to: 1, step: 0, score: score.score}")), "step 0 must be > 0");
   has(loadError(sweepNet("{property: value, from: 0, to: 1, step: -1, score: score.score}")), "step -1 must be > 0");
   has(loadError(sweepNet("{property: value, values: [], score: score.score}")), "'values' is empty");
@@ -286,6 +285,31 @@ TEST_F(FeedbackTest, ExplicitCoarseToFineTriesTheGridThenAroundTheBest) {
   EXPECT_EQ(trace->chosen_value, 100);
   EXPECT_EQ(trace->stop_reason, "finished");
   EXPECT_EQ(trace->candidates, 37u);
+}
+
+// `to` below `from`: the candidates run downwards, e.g. the thresholds most likely to succeed first;
+// the fine pass stays within the range.
+TEST_F(FeedbackTest, ADescendingRangeIsTriedFromItsFirstEnd) {
+  auto e = load(sweepNet("{property: value, from: 210, to: 30, step: 5, search: coarse_to_fine, coarse_step: 30, "
+                         "fine_radius: 10, score: score.score}", 201));
+  ASSERT_TRUE(e->run().ok());
+  auto trace = e->output<FeedbackTrace>("x.feedback_trace");
+  EXPECT_EQ(trace->values, (std::vector<double>{210, 180, 150, 120, 90, 60, 30, 200, 205}));  // not 215, 220
+  EXPECT_EQ(trace->chosen_value, 200);
+  EXPECT_EQ(trace->candidates, 37u);
+  // Good enough stops at the first candidate in that order.
+  e = load(sweepNet("{property: value, from: 4, to: 0, score: score.score, good_enough: -1}", 1.5));
+  ASSERT_TRUE(e->run().ok());
+  trace = e->output<FeedbackTrace>("x.feedback_trace");
+  EXPECT_EQ(trace->values, (std::vector<double>{4, 3, 2}));  // -(2 - 1.5)^2 >= -1; 1 would score the same
+  EXPECT_EQ(trace->chosen_value, 2);
+  // The halving search on a descending range.
+  e = load(sweepNet("{property: value, from: 10, to: 0, search: coarse_to_fine, score: score.score}", 3));
+  ASSERT_TRUE(e->run().ok());
+  trace = e->output<FeedbackTrace>("x.feedback_trace");
+  EXPECT_EQ(trace->values.front(), 10);
+  EXPECT_EQ(trace->chosen_value, 3);
+  EXPECT_LT(trace->values.size(), 11u);
 }
 
 TEST_F(FeedbackTest, ParallelAndSequentialAgreeExactlyWithInitialGoodEnoughAndCoarseToFine) {

@@ -83,6 +83,18 @@ TEST(NetWriter, FeedbackCandidatesThatAreNotEvenlySpacedAreWrittenAsValues) {
   EXPECT_EQ(parseNetText(text, "t.yaml", "").blocks[0].feedback->values, (std::vector<double>{1, 2, 5}));
 }
 
+TEST(NetWriter, ADescendingRangeIsWrittenAsARange) {
+  const std::string net = "blocks:\n  a: {type: test/Constant, feedback: {property: value, from: 190, to: 10, step: 5, "
+                          "search: coarse_to_fine, coarse_step: 30, fine_radius: 10, score: a.value}}\n";
+  const std::string text = rewrite(net);
+  EXPECT_NE(text.find("from: 190, to: 10, step: 5"), std::string::npos) << text;
+  const FeedbackSpec f = *parseNetText(text, "t.yaml", "").blocks[0].feedback;
+  ASSERT_EQ(f.values.size(), 37u) << text;
+  EXPECT_EQ(f.values.front(), 190);
+  EXPECT_EQ(f.values[1], 185);
+  EXPECT_EQ(f.values.back(), 10);
+}
+
 TEST(NetWriter, SetTopLevelSectionReplacesOnlyThatSection) {
   const std::string text = "# head\nblocks:\n  a: {type: x}  # keep me\ndesigner:\n  positions: {a: [1, 2]}\n\n# tail\nlinks: []\n";
   const std::string replaced = setTopLevelSection(text, "designer", "positions: {a: [3, 4]}");
