@@ -392,7 +392,7 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
     }
     const int total = target ? max_poses : requested;
     StereoPair last_pair;
-    double detection_time = 0;
+    DetectionTime detection_time;
     const Result r = runNet(exec, progress, total, requested, &last_pair, &detection_time);
     fill(res, r, base, child_frame_);
     res.target_met = r.withinUncertaintyTarget(req.target_uncertainty, req.target_uncertainty_rotation);
@@ -406,7 +406,8 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
       if (!r.success) res.message = "calibration failed: " + res.message;
       return res;
     }
-    res.compute_time = r.compute_time + detection_time;  // image processing + solving, no motion
+    res.compute_time = r.compute_time + detection_time.wall;  // image processing + solving, no motion
+    res.detection_cpu_time = detection_time.cpu;
     if (!r.success) {
       res.message = "calibration failed: " + r.message + target_note +
                     "; the saved calibration and the published frame are unchanged";
@@ -455,7 +456,7 @@ imagenets::Calibrate::Response CalibrationNode::run(const imagenets::Calibrate::
 }
 
 Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progress, int samples, int requested,
-                               StereoPair* last_pair, double* detection_time) {
+                               StereoPair* last_pair, DetectionTime* detection_time) {
   // The sample net's own outputs after each repetition: the stereo pair and the sample, for the
   // live detection images (its inner executor is idle between repetitions).
   const int samples_node = exec.net().findNode("samples");
@@ -465,7 +466,7 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
   if (until && (until->net().findNode("solve") < 0 || until->net().findNode("result") < 0)) until = nullptr;
   std::mutex mutex;
   int done = 0;
-  double left_ms = 0, right_ms = 0;
+  double left_ms = 0, right_ms = 0, left_cpu_ms = 0, right_cpu_ms = 0;
   auto feedback = [&](int k, const std::string& stage) {
     imagenets::CalibrateFeedback f;
     f.sample = k;
@@ -481,13 +482,17 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
       progress(feedback(e.block == "solve" ? done : done + 1, e.block));
     } else if (e.kind == imagenets::RunEventKind::BlockFinished && e.block == "samples/left_detection") {
       left_ms = e.stats.last_ms;
+      left_cpu_ms = e.stats.last_cpu_ms;  // its sub-net runs on this one thread (threads: 1)
     } else if (e.kind == imagenets::RunEventKind::BlockFinished && e.block == "samples/right_detection") {
       right_ms = e.stats.last_ms;
+      right_cpu_ms = e.stats.last_cpu_ms;
     } else if (e.kind == imagenets::RunEventKind::Repetition && e.block == "samples") {
       done = e.index;
-      *detection_time += std::max(left_ms, right_ms) / 1000.0;  // both images in parallel
+      detection_time->wall += std::max(left_ms, right_ms) / 1000.0;  // both images in parallel
+      detection_time->cpu += std::max(left_cpu_ms, right_cpu_ms) / 1000.0;
       const double sample_left_ms = left_ms, sample_right_ms = right_ms;
-      left_ms = right_ms = 0;
+      const double sample_left_cpu_ms = left_cpu_ms, sample_right_cpu_ms = right_cpu_ms;
+      left_ms = right_ms = left_cpu_ms = right_cpu_ms = 0;
       if (until && progress && e.index >= requested && e.index < samples &&
           until->stats("solve").status == imagenets::BlockStatus::Ok) {
         // The until net has just solved the samples so far: how certain the fixed point is now.
@@ -512,9 +517,10 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
         const Sample s = fromMsg(*sample);
         publishDetections(pair, s);
         *last_pair = pair;
-        ROS_INFO("sample %d/%d: left %s (conf %.2f, %.0f ms), right %s (conf %.2f, %.0f ms)", done, samples,
-                 s.left.found ? "found" : "not found", s.left.confidence, sample_left_ms,
-                 s.right.found ? "found" : "not found", s.right.confidence, sample_right_ms);
+        ROS_INFO("sample %d/%d: left %s (conf %.2f, %.0f ms, CPU %.0f ms), right %s (conf %.2f, %.0f ms, CPU %.0f ms)",
+                 done, samples, s.left.found ? "found" : "not found", s.left.confidence, sample_left_ms,
+                 sample_left_cpu_ms, s.right.found ? "found" : "not found", s.right.confidence, sample_right_ms,
+                 sample_right_cpu_ms);
       } catch (const std::exception&) {
         // A sample net without these outputs (e.g. the replay's) draws no pictures.
       }

@@ -1,5 +1,7 @@
 #include "imagenets/block_invocation.h"
 
+#include <time.h>
+
 #include <chrono>
 
 #include "imagenets/registry.h"
@@ -12,6 +14,14 @@ int missingInput(const Block& block, const std::vector<Value>& inputs) {
   }
   return -1;
 }
+
+namespace {
+double threadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+}  // namespace
 
 BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<Value> inputs,
                             PropertyValues properties, RunChannel channel, const std::function<void()>& starting) {
@@ -29,6 +39,7 @@ BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<V
   ctx.setRunChannel(std::move(channel));
   if (starting) starting();
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = threadCpuMs();
   try {
     block.process(ctx);
   } catch (const RunCancelled&) {
@@ -39,6 +50,7 @@ BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<V
   } catch (...) {
     result.error = "unknown exception";
   }
+  result.cpu_ms = threadCpuMs() - cpu_start;  // inside the wall-time interval
   result.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.processed = true;
   if (result.cancelled) {

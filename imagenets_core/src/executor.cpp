@@ -244,14 +244,16 @@ BlockStats Executor::statsOf(int node) const {
   return stats_[node];
 }
 
-BlockStats Executor::record(int node, BlockStatus status, const std::string& message, double ms, bool counted) {
+BlockStats Executor::record(int node, BlockStatus status, const std::string& message, double ms, bool counted,
+                            double cpu_ms) {
   std::lock_guard<std::mutex> lock(stats_mutex_);
-  stats_[node].record(status, message, ms, counted);
+  stats_[node].record(status, message, ms, counted, cpu_ms);
   return stats_[node];
 }
 
-void Executor::finish(int node, BlockStatus status, const std::string& message, double ms, bool counted) {
-  emitBlockEvent(RunEventKind::BlockFinished, node, record(node, status, message, ms, counted));
+void Executor::finish(int node, BlockStatus status, const std::string& message, double ms, bool counted,
+                      double cpu_ms) {
+  emitBlockEvent(RunEventKind::BlockFinished, node, record(node, status, message, ms, counted, cpu_ms));
 }
 
 void Executor::skipCancelled(int unit, RunReport& report) {
@@ -303,8 +305,8 @@ void Executor::runNode(int node, Store& store, RunReport& report, const Override
     return;
   }
   std::string message = run.missing_input >= 0 ? explainMissing(node, run.missing_input) : run.message;
-  if (trial) record(node, run.status, message, run.ms, run.processed);
-  else finish(node, run.status, message, run.ms, run.processed);
+  if (trial) record(node, run.status, message, run.ms, run.processed, run.cpu_ms);
+  else finish(node, run.status, message, run.ms, run.processed, run.cpu_ms);
   store[node] = std::move(run.outputs);
   std::lock_guard<std::mutex> lock(report_mutex_);
   if (run.status == BlockStatus::Ok) report.ran.push_back(n.name);

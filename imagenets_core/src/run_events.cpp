@@ -26,7 +26,8 @@ const char* eventName(RunEventKind kind) {
   return "?";
 }
 
-void BlockStats::record(BlockStatus new_status, const std::string& new_message, double ms, bool processed) {
+void BlockStats::record(BlockStatus new_status, const std::string& new_message, double ms, bool processed,
+                        double cpu_ms) {
   status = new_status;
   message = new_message;
   // last_error goes with `failures`: what process() said, not a verdict about the block (e.g. a
@@ -38,6 +39,7 @@ void BlockStats::record(BlockStatus new_status, const std::string& new_message, 
   if (processed) {
     ++runs;
     last_ms = ms;
+    last_cpu_ms = cpu_ms;
     mean_ms += (ms - mean_ms) / static_cast<double>(runs);
   }
 }

@@ -2,6 +2,10 @@
 // named, outputs taken only as declared, the result recorded in one BlockStats.
 #include <gtest/gtest.h>
 #include <std_msgs/Float64.h>
+#include <time.h>
+
+#include <chrono>
+#include <thread>
 
 #include "imagenets/block_invocation.h"
 #include "imagenets/registry.h"
@@ -75,4 +79,39 @@ TEST(BlockInvocation, CancelledOnlyWhenTheRunWas) {
   EXPECT_EQ(run.status, BlockStatus::NotRun);
   EXPECT_TRUE(run.cancelled);
   EXPECT_EQ(run.message, "cancelled");
+}
+
+// Wall time and CPU time are measured apart: a block that waits costs time but no CPU, a block
+// that computes costs CPU; the stats keep both.
+TEST(BlockInvocation, MeasuresTheCallingThreadsCpuTimeBesideTheWallTime) {
+  class Waits : public Block {
+   public:
+    void process(Context&) override { std::this_thread::sleep_for(std::chrono::milliseconds(30)); }
+  } waits;
+  BlockInvocation run = invokeBlock(waits, "waits", {}, waits.propertyValues());
+  ASSERT_EQ(run.status, BlockStatus::Ok) << run.message;
+  EXPECT_GE(run.ms, 30.0);
+  EXPECT_LT(run.cpu_ms, 15.0);
+
+  class Computes : public Block {
+   public:
+    // Until the thread itself has used 20 ms of CPU, however long that takes on a busy machine.
+    void process(Context&) override {
+      timespec start{}, now{};
+      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &start);
+      volatile double x = 0;
+      do {
+        for (int i = 0; i < 1000; ++i) x = x + 1e-9 * i;
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+      } while ((now.tv_sec - start.tv_sec) * 1e3 + (now.tv_nsec - start.tv_nsec) * 1e-6 < 20.0);
+    }
+  } computes;
+  run = invokeBlock(computes, "computes", {}, computes.propertyValues());
+  ASSERT_EQ(run.status, BlockStatus::Ok) << run.message;
+  EXPECT_GE(run.cpu_ms, 20.0);
+  EXPECT_GE(run.ms, run.cpu_ms);
+  BlockStats stats;
+  stats.record(run.status, run.message, run.ms, run.processed, run.cpu_ms);
+  EXPECT_EQ(stats.last_cpu_ms, run.cpu_ms);
+  EXPECT_EQ(stats.last_ms, run.ms);
 }

@@ -39,6 +39,7 @@ class AccuracyStudyTest(unittest.TestCase):
             self.assertTrue(any(line.startswith("| %d | " % seed) for line in done.stdout.splitlines()), done.stdout)
         self.assertIn("| 95th percentile |", done.stdout)
         self.assertIn("3-sigma coverage:", done.stdout)
+        self.assertIn("Compute per pose (image processing and solve, no motion; wall time): median ", done.stdout)
 
         with open(os.path.join(out, "robots.csv")) as f:
             robots = list(csv.DictReader(f))
@@ -60,6 +61,10 @@ class AccuracyStudyTest(unittest.TestCase):
             self.assertLess(float(r["identifiable_error_mm"]), 0.5, r)
             self.assertGreater(float(r["bound3_mm"]), 0.0, r)
             self.assertGreater(int(r["samples_used"]), 0, r)
+            # The detection's CPU time: measured (not 0), and within the wall time it is part of
+            # (per pose the larger image's, each at most its own wall time).
+            self.assertGreater(float(r["detection_cpu_time_s"]), 0.0, r)
+            self.assertLessEqual(float(r["detection_cpu_time_s"]), float(r["compute_time_s"]) + 1e-4, r)
         with open(os.path.join(out, "runs.csv")) as f:
             runs = list(csv.DictReader(f))
         self.assertEqual(sorted((int(r["seed"]), int(r["loops"])) for r in runs),

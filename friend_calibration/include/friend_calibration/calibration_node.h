@@ -78,13 +78,18 @@ class CalibrationNode {
 
   // Loads ~net (and its replay twin); throws naming the file, block or port that is wrong.
   void loadNets(const std::string& net, const std::string& replay_net);
+  // The marker detection's time over all poses, s: per pose the larger of the two images' (they
+  // are detected in parallel), as wall time and as the detecting threads' CPU time.
+  struct DetectionTime {
+    double wall = 0, cpu = 0;
+  };
   // Runs `exec` (the live or the replay net) and returns its result; throws with the failure.
   // `samples`: N for the feedback (0: unknown; with a target the maximum); fills the last stereo
   // pair and the detection time.
   // `requested`: the poses taken in any case (with a target, each one after them is fed back with
   // the bounds reached).
   Result runNet(imagenets::Executor& exec, const Progress& progress, int samples, int requested, StereoPair* last_pair,
-                double* detection_time);
+                DetectionTime* detection_time);
   // The until net of the net's sample sub-net (calibration_target.yaml), or null.
   static imagenets::Executor* untilNet(const imagenets::Executor& exec);
   void publish(const Result& result, const std::string& frame);

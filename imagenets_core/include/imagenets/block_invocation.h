@@ -19,6 +19,7 @@ struct BlockInvocation {
   bool cancelled = false;   // NotRun: the block stopped early because its run was cancelled
   bool processed = false;   // process() was called (counts as a run in the stats, failed or not)
   double ms = 0.0;          // time spent in process()
+  double cpu_ms = 0.0;      // CPU time of the calling thread in process() (not of threads it handed work to)
   std::vector<Value> outputs;  // per declared output port; all empty unless Ok
 };
 

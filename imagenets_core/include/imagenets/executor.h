@@ -116,9 +116,10 @@ class Executor {
   std::string explainMissing(int node, int input) const;
   BlockStats statsOf(int node) const;
   // Records a block's status; `counted` adds a process() call to its timings. Returns the stats.
-  BlockStats record(int node, BlockStatus status, const std::string& message, double ms, bool counted);
+  BlockStats record(int node, BlockStatus status, const std::string& message, double ms, bool counted,
+                    double cpu_ms = 0.0);
   // record() + a BlockFinished event.
-  void finish(int node, BlockStatus status, const std::string& message, double ms, bool counted);
+  void finish(int node, BlockStatus status, const std::string& message, double ms, bool counted, double cpu_ms = 0.0);
   // A unit (a block, or a feedback block with its region) that a cancel kept from starting.
   void skipCancelled(int unit, RunReport& report);
   bool cancelled() const;

@@ -29,10 +29,14 @@ struct BlockStats {
   size_t failures = 0;     // process() calls that failed
   double last_ms = 0.0;
   double mean_ms = 0.0;
+  // CPU time of the thread that ran process(): what the block cost, whatever else the machine
+  // did meanwhile. Work it handed to other threads (parallel feedback trials, a sub-net with
+  // more than one thread) is not in it.
+  double last_cpu_ms = 0.0;
   std::string last_error;  // the last failed process() call's message, kept after later successes
 
   // Records one invocation; `processed`: process() was called (it counts as a run, timed).
-  void record(BlockStatus new_status, const std::string& new_message, double ms, bool processed);
+  void record(BlockStatus new_status, const std::string& new_message, double ms, bool processed, double cpu_ms = 0.0);
 };
 
 enum class RunEventKind {

@@ -200,7 +200,7 @@ class BlockHost {
     {
       std::lock_guard<std::mutex> lock(status_mutex_);
       running_ = false;
-      stats_.record(run.status, run.message, run.ms, run.processed);
+      stats_.record(run.status, run.message, run.ms, run.processed, run.cpu_ms);
     }
     if (run.status == BlockStatus::Ok) {
       for (size_t i = 0; i < publishers_.size(); ++i) {

@@ -52,7 +52,7 @@ class BlockHarness {
     }
     outputs_.clear();
     BlockInvocation result = invokeBlock(*block_, "test", std::move(in), block_->propertyValues());
-    stats_.record(result.status, result.message, result.ms, result.processed);
+    stats_.record(result.status, result.message, result.ms, result.processed, result.cpu_ms);
     if (result.status != BlockStatus::Ok) throw BlockError(result.error);
     for (size_t i = 0; i < block_->outputs().size(); ++i) outputs_[block_->outputs()[i].name] = result.outputs[i];
   }
