@@ -9,8 +9,6 @@
 // predicted region. Times are CPU time of the detecting thread (robust to a loaded machine; the
 // net runs on an executor with one thread, the caller's) and wall time of a left+right pair
 // detected in parallel, as the node does.
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -26,17 +24,12 @@
 #include "imagenets/blocks/image.h"
 #include "imagenets/executor.h"
 #include "imagenets/net.h"
+#include "imagenets/time.h"
 
 using namespace friend_calibration;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-double threadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 // Accuracy is counted apart for clean views and for views with a reflection whose detection
 // passes the calibration's reprojection gate (FusionLimits::min_reprojection_error, the limit
@@ -52,9 +45,9 @@ using Detect = std::function<MarkerObservation(const CalibrationView&, int side)
 Figures measure(const std::vector<CalibrationView>& views, const Detect& detect) {
   Figures f;
   auto one = [&](const CalibrationView& v, int side, double* cpu) {
-    const double c0 = threadCpuMs();
+    const double c0 = imagenets::threadCpuMs();
     MarkerObservation o = detect(v, side);
-    *cpu = threadCpuMs() - c0;
+    *cpu = imagenets::threadCpuMs() - c0;
     return o;
   };
   for (size_t i = 0; i + 1 < views.size(); i += 2) {  // left, right of one pose

@@ -466,7 +466,9 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
   if (until && (until->net().findNode("solve") < 0 || until->net().findNode("result") < 0)) until = nullptr;
   std::mutex mutex;
   int done = 0;
-  double left_ms = 0, right_ms = 0, left_cpu_ms = 0, right_cpu_ms = 0;
+  // The two detections of the current sample; their sub-nets run on one thread each (threads: 1),
+  // so their CPU time is the whole detection's.
+  imagenets::BlockStats left, right;
   auto feedback = [&](int k, const std::string& stage) {
     imagenets::CalibrateFeedback f;
     f.sample = k;
@@ -481,18 +483,15 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
       // Stage: the block that started (e.g. samples/move_arm, samples/grab, samples/left_detection, solve).
       progress(feedback(e.block == "solve" ? done : done + 1, e.block));
     } else if (e.kind == imagenets::RunEventKind::BlockFinished && e.block == "samples/left_detection") {
-      left_ms = e.stats.last_ms;
-      left_cpu_ms = e.stats.last_cpu_ms;  // its sub-net runs on this one thread (threads: 1)
+      left = e.stats;
     } else if (e.kind == imagenets::RunEventKind::BlockFinished && e.block == "samples/right_detection") {
-      right_ms = e.stats.last_ms;
-      right_cpu_ms = e.stats.last_cpu_ms;
+      right = e.stats;
     } else if (e.kind == imagenets::RunEventKind::Repetition && e.block == "samples") {
       done = e.index;
-      detection_time->wall += std::max(left_ms, right_ms) / 1000.0;  // both images in parallel
-      detection_time->cpu += std::max(left_cpu_ms, right_cpu_ms) / 1000.0;
-      const double sample_left_ms = left_ms, sample_right_ms = right_ms;
-      const double sample_left_cpu_ms = left_cpu_ms, sample_right_cpu_ms = right_cpu_ms;
-      left_ms = right_ms = left_cpu_ms = right_cpu_ms = 0;
+      detection_time->wall += std::max(left.last_ms, right.last_ms) / 1000.0;  // both images in parallel
+      detection_time->cpu += std::max(left.last_cpu_ms, right.last_cpu_ms) / 1000.0;
+      const imagenets::BlockStats sample_left = left, sample_right = right;
+      left = right = {};
       if (until && progress && e.index >= requested && e.index < samples &&
           until->stats("solve").status == imagenets::BlockStatus::Ok) {
         // The until net has just solved the samples so far: how certain the fixed point is now.
@@ -518,9 +517,9 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
         publishDetections(pair, s);
         *last_pair = pair;
         ROS_INFO("sample %d/%d: left %s (conf %.2f, %.0f ms, CPU %.0f ms), right %s (conf %.2f, %.0f ms, CPU %.0f ms)",
-                 done, samples, s.left.found ? "found" : "not found", s.left.confidence, sample_left_ms,
-                 sample_left_cpu_ms, s.right.found ? "found" : "not found", s.right.confidence, sample_right_ms,
-                 sample_right_cpu_ms);
+                 done, samples, s.left.found ? "found" : "not found", s.left.confidence, sample_left.last_ms,
+                 sample_left.last_cpu_ms, s.right.found ? "found" : "not found", s.right.confidence,
+                 sample_right.last_ms, sample_right.last_cpu_ms);
       } catch (const std::exception&) {
         // A sample net without these outputs (e.g. the replay's) draws no pictures.
       }

@@ -1,10 +1,9 @@
 #include "imagenets/block_invocation.h"
 
-#include <time.h>
-
 #include <chrono>
 
 #include "imagenets/registry.h"
+#include "imagenets/time.h"
 
 namespace imagenets {
 
@@ -14,14 +13,6 @@ int missingInput(const Block& block, const std::vector<Value>& inputs) {
   }
   return -1;
 }
-
-namespace {
-double threadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
-}
-}  // namespace
 
 BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<Value> inputs,
                             PropertyValues properties, RunChannel channel, const std::function<void()>& starting) {

@@ -1,5 +1,7 @@
 #include "imagenets/time.h"
 
+#include <time.h>
+
 #include <ros/init.h>
 
 namespace imagenets {
@@ -8,4 +10,11 @@ ros::Time now() {
   ros::WallTime wall = ros::WallTime::now();
   return ros::Time(wall.sec, wall.nsec);
 }
+
+double threadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+
 }  // namespace imagenets
