@@ -304,8 +304,7 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   std::vector<std::string> events;
   e->addObserver([&](const RunEvent& ev) {
     std::lock_guard<std::mutex> lock(mutex);
-    if (ev.kind == RunEventKind::Repetition) events.push_back("repetition " + std::to_string(ev.index) + " of " +
-                                                              std::to_string(ev.count));
+    if (ev.kind == RunEventKind::Repetition) events.push_back(describe(ev));
     if (ev.kind == RunEventKind::BlockFinished && ev.block == "loop/until/sum") events.push_back("until");
   });
   auto target = [&](double t) {
@@ -317,9 +316,12 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   target(10);
   ASSERT_TRUE(e->run().ok());
   EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1, 2, 3, 4}));
-  EXPECT_EQ(events, (std::vector<std::string>{"repetition 1 of 8", "until", "repetition 2 of 8", "until",
-                                              "repetition 3 of 8", "until", "repetition 4 of 8", "until",
-                                              "repetition 5 of 8"}));
+  // Each repetition's event says what the until net said after it.
+  EXPECT_EQ(events, (std::vector<std::string>{"loop: repetition 1 of 8 done", "until",
+                                              "loop: repetition 2 of 8 done (until net: not done)", "until",
+                                              "loop: repetition 3 of 8 done (until net: not done)", "until",
+                                              "loop: repetition 4 of 8 done (until net: not done)", "until",
+                                              "loop: repetition 5 of 8 done (until net: done)"}));
   // Done at once: the N repetitions always run.
   target(0);
   ASSERT_TRUE(e->run().ok());
@@ -328,6 +330,18 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   target(1000);
   ASSERT_TRUE(e->run().ok());
   EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data.size(), 8u);
+  // An until net that fails is not done either; every repetition's event says why, not only the
+  // until net's own block event.
+  target(-1);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    events.clear();
+  }
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data.size(), 8u);
+  ASSERT_EQ(events.size(), 8u + 6u);  // 8 repetitions, the until net asked after the 2nd..7th
+  EXPECT_EQ(events[2], "loop: repetition 2 of 8 done (until net failed: sum: input 'threshold': -1.000000 is below 0)");
+  EXPECT_EQ(events.back(), "loop: repetition 8 of 8 done");
   e->setProperty("loop", "max_repeat", 1);
   const RunReport below = e->run();
   ASSERT_EQ(below.failed.size(), 1u);

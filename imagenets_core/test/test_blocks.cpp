@@ -157,9 +157,10 @@ class SumAtLeast : public Block {
   void process(Context& ctx) override {
     count(ctx);
     const auto values = ctx.input<std_msgs::Float64MultiArray>("values");
+    const double threshold = ctx.input<std_msgs::Float64>("threshold")->data;
+    if (threshold < 0) throw BlockError("input 'threshold': " + std::to_string(threshold) + " is below 0");
     auto reached = boost::make_shared<std_msgs::Bool>();
-    reached->data = std::accumulate(values->data.begin(), values->data.end(), 0.0) >=
-                    ctx.input<std_msgs::Float64>("threshold")->data;
+    reached->data = std::accumulate(values->data.begin(), values->data.end(), 0.0) >= threshold;
     ctx.output("reached", reached);
   }
 };
@@ -185,5 +186,5 @@ IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Scale, "test/Scale", "test", "in 
 IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Add, "test/Add", "test", "a + b");
 IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Parabola, "test/Parabola", "test", "Score with a known peak");
 IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Counter, "test/Counter", "test", "Counts its runs");
-IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::SumAtLeast, "test/SumAtLeast", "test", "sum(values) >= threshold");
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::SumAtLeast, "test/SumAtLeast", "test", "sum(values) >= threshold (fails below 0)");
 IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::test::Barrier, "test/Barrier", "test", "Meets other barriers");

@@ -173,21 +173,27 @@ void SubNetBlock::configure() {
   }
 }
 
-bool SubNetBlock::untilDone(const std::vector<std::vector<Value>>& results, const std::vector<Value>& inputs) {
+bool SubNetBlock::untilDone(const std::vector<std::vector<Value>>& results, const std::vector<Value>& inputs,
+                            std::string* verdict) {
   for (const auto& in : until_inputs_) {
     if (in.input >= 0) {
       until_->setInput(in.inner, inputs[in.input]);
     } else if (!results[in.output].empty()) {
       until_->setInput(in.inner, outputs_[in.output].collector->collect(results[in.output]));
     } else {
-      return false;  // no repetition has succeeded yet
+      *verdict = "until net not asked: no repetition has succeeded yet";
+      return false;
     }
   }
-  // A failed run (its events say why) is not done: more repetitions may well help.
+  // A failed run is not done: more repetitions may well help.
   const RunReport report = until_->run();
   if (report.cancelled) throw RunCancelled();
-  if (!report.failed.empty()) return false;
+  if (!report.failed.empty()) {
+    *verdict = "until net failed: " + report.failed.front();
+    return false;
+  }
   const auto done = until_->output<std_msgs::Bool>(until_done_);
+  *verdict = done && done->data ? "until net: done" : "until net: not done";
   return done && done->data;
 }
 
@@ -256,7 +262,9 @@ void SubNetBlock::process(Context& ctx) {
                                                   ctx.emit(e);
                                                 },
                                                 [&ctx] { return ctx.cancelled(); }});
-      enough = untilDone(results, input_values);
+      std::string verdict;
+      enough = untilDone(results, input_values, &verdict);
+      done.message += (done.message.empty() ? "" : "; ") + verdict;
     }
     ctx.emit(done);
     if (enough) break;

@@ -56,8 +56,10 @@ class SubNetBlock : public Block, public InnerNet {
     int output = -1;    // index in outputs_ whose collection so far feeds it
   };
   // Runs the until net on the repetitions so far (`inputs`: this run's input values, as inputs_);
-  // true when it says done.
-  bool untilDone(const std::vector<std::vector<Value>>& results, const std::vector<Value>& inputs);
+  // true when it says done. `verdict`: what it said, for the repetition's event (a failed until
+  // net repeats, and says why).
+  bool untilDone(const std::vector<std::vector<Value>>& results, const std::vector<Value>& inputs,
+                 std::string* verdict);
 
   std::unique_ptr<Executor> executor_;
   std::unique_ptr<Executor> until_;
