@@ -145,21 +145,10 @@ void makeQuick(StudyConfig* config) {
   config->supersampling = 3;
 }
 
-std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<void(int, int)>& progress) {
-  const MarkerDescription marker = MarkerDescription::load(config.marker);
-  auto info = boost::make_shared<sensor_msgs::CameraInfo>(readCameraInfo(config.camera));
-  info->header.frame_id = "camera_optical_frame";
-  const render::CameraModel camera = render::CameraModel::fromCameraInfo(*info);
-  const std::shared_ptr<const render::Renderer> renderer = sharedRenderer(camera, config.supersampling);
+namespace {
 
-  render::Plane square = markerPlane(marker, Eigen::Isometry3d::Identity());
-  applyPrintReflectance(&square);
-  AprilTagOptions april;
-  april.size = marker.size;
-  april.id = 0;
-  render::Plane tag = aprilTagPlane(april, 0, marker.margin, Eigen::Isometry3d::Identity());
-  applyPrintReflectance(&tag);
-
+// The views of every condition, each with its random imaging drawn.
+std::vector<View> drawViews(const StudyConfig& config) {
   std::vector<View> views;
   const auto& catalogue = studyConditions();
   for (const StudyCondition& condition : config.conditions) {
@@ -181,17 +170,182 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
       }
     }
   }
+  return views;
+}
 
-  ThresholdMode fixed_mode, feedback_mode;
-  fixed_mode.kind = ThresholdMode::Kind::Fixed;
-  fixed_mode.fixed = config.fixed_threshold;
-  feedback_mode.kind = ThresholdMode::Kind::AsWritten;  // what `imagenets detect` runs
-  feedback_mode.parallel = false;  // the views run in parallel already
+// What the study renders, shared by its workers.
+struct StudyScene {
+  MarkerDescription marker;
+  sensor_msgs::CameraInfoPtr info;
+  render::CameraModel camera;
+  std::shared_ptr<const render::Renderer> renderer;
+  AprilTagOptions april;
+  render::Plane square, tag;
+
+  explicit StudyScene(const StudyConfig& config)
+      : marker(MarkerDescription::load(config.marker)),
+        info(boost::make_shared<sensor_msgs::CameraInfo>(readCameraInfo(config.camera))),
+        camera(render::CameraModel::fromCameraInfo(*info)),
+        renderer(sharedRenderer(camera, config.supersampling)) {
+    info->header.frame_id = "camera_optical_frame";
+    square = markerPlane(marker, Eigen::Isometry3d::Identity());
+    applyPrintReflectance(&square);
+    april.size = marker.size;
+    april.id = 0;
+    tag = aprilTagPlane(april, 0, marker.margin, Eigen::Isometry3d::Identity());
+    applyPrintReflectance(&tag);
+  }
+};
+
+ThresholdMode fixedMode(const StudyConfig& config) {
+  ThresholdMode mode;
+  mode.kind = ThresholdMode::Kind::Fixed;
+  mode.fixed = config.fixed_threshold;
+  return mode;
+}
+
+ThresholdMode feedbackMode() {
+  ThresholdMode mode;
+  mode.kind = ThresholdMode::Kind::AsWritten;  // what `imagenets detect` runs
+  mode.parallel = false;                       // the views run in parallel already
+  return mode;
+}
+
+// One worker's methods: renders a view and runs every method on it, one row each.
+class ViewMeasurement {
+ public:
+  ViewMeasurement(const StudyConfig& config, const StudyScene& scene)
+      : config_(config),
+        scene_(scene),
+        fixed_name_("fixed" + std::to_string(config.fixed_threshold)),
+        fixed_net_(config.net, config.marker, fixedMode(config), 1),
+        feedback_net_(config.net, config.marker, feedbackMode(), 1),
+        calibration_net_(config.calibration_net.empty() ? nullptr : Executor::loadFile(config.calibration_net)),
+        april_detector_(scene.april) {}
+
+  std::vector<StudyRow> measure(const View& v) {
+    ViewSettings settings;
+    settings.distance = v.distance;
+    settings.pan = v.pan * kDeg;
+    settings.tilt = v.tilt * kDeg;
+    settings.illumination = v.illumination;
+    settings.background = v.condition->background;
+    settings.blur = v.blur;
+    settings.noise = v.noise;
+    settings.seed = v.seed;
+    std::vector<StudyRow> rows;
+    const cv::Mat square_image = renderView(*scene_.renderer, scene_.square, settings, &truth_);
+    measureRendering(v, square_image, renderView(*scene_.renderer, scene_.tag, settings, nullptr), false, &rows);
+    if (config_.decoys) {
+      std::mt19937_64 decoy_rng(v.seed ^ 0x5eedDec0ull);
+      render::Plane decoy_square =
+          markerPlane(withRandomPattern(scene_.marker, &decoy_rng), Eigen::Isometry3d::Identity());
+      applyPrintReflectance(&decoy_square);
+      // tag36h11 has 587 codes; the detector looks for id 0.
+      render::Plane decoy_tag = aprilTagPlane(scene_.april, 1 + static_cast<int>(decoy_rng() % 586),
+                                              scene_.marker.margin, Eigen::Isometry3d::Identity());
+      applyPrintReflectance(&decoy_tag);
+      measureRendering(v, renderView(*scene_.renderer, decoy_square, settings, nullptr),
+                       renderView(*scene_.renderer, decoy_tag, settings, nullptr), true, &rows);
+    }
+    return rows;
+  }
+
+ private:
+  // Every method on one rendering of the view (of the marker, or of a decoy in its place).
+  void measureRendering(const View& v, const cv::Mat& square_view, const cv::Mat& tag_view, bool decoy,
+                        std::vector<StudyRow>* rows) {
+    std_msgs::Header header;
+    header.frame_id = scene_.info->header.frame_id;
+    const sensor_msgs::ImageConstPtr msg = cv_bridge::CvImage(header, "mono8", square_view).toImageMsg();
+    for (MarkerDetectionNet* net : {&fixed_net_, &feedback_net_}) {
+      StudyRow r = row(v, net == &fixed_net_ ? fixed_name_ : "detect", decoy);
+      const MarkerDetectionNet::Result res = net->run(msg, scene_.info);
+      if (!res.error.empty()) throw std::runtime_error(res.error);
+      r.ms = res.ms;
+      r.found = res.detection->found;
+      if (r.found) {
+        r.threshold = res.detection->threshold;
+        score(&r, fromPoseMsg(res.detection->pose));
+      }
+      rows->push_back(r);
+    }
+    if (calibration_net_) rows->push_back(runCalibrationNet(row(v, "calibration", decoy), header, msg));
+    StudyRow r = row(v, "apriltag", decoy);
+    const auto t0 = std::chrono::steady_clock::now();
+    const Detection d = april_detector_.detect(tag_view, scene_.camera);
+    r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    r.found = d.found;
+    if (d.found) score(&r, d.pose);
+    rows->push_back(r);
+  }
+
+  // The calibration's detection net, told where the marker truly is (the study measures the
+  // detection, not the prediction).
+  StudyRow runCalibrationNet(StudyRow r, const std_msgs::Header& header, const sensor_msgs::ImageConstPtr& msg) {
+    auto predicted = boost::make_shared<geometry_msgs::PoseStamped>();
+    predicted->header = header;
+    predicted->pose = frames::toPose(truth_);
+    const auto t0 = std::chrono::steady_clock::now();
+    calibration_net_->setInput("image.value", msg);
+    calibration_net_->setInput("camera_info.value", sensor_msgs::CameraInfoConstPtr(scene_.info));
+    calibration_net_->setInput("predicted_pose.value", geometry_msgs::PoseStampedConstPtr(predicted));
+    const RunReport report = calibration_net_->run();
+    r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const auto region = calibration_net_->output<FeedbackTrace>("region.feedback_trace");
+    const auto trace = calibration_net_->output<FeedbackTrace>("feedback_trace.value");
+    const auto detection = calibration_net_->output<imagenets::MarkerDetection>("detection.value");
+    // No region and threshold of the search found it: "no valid candidate", not an error.
+    if (!report.ok() && !(region && !region->found)) {
+      throw std::runtime_error(config_.calibration_net + ": " + report.failed.front());
+    }
+    r.found = report.ok() && detection && detection->found;
+    if (r.found) {
+      r.threshold = trace->chosen_value;
+      score(&r, fromPoseMsg(detection->pose));
+    }
+    return r;
+  }
+
+  static StudyRow row(const View& v, const std::string& method, bool decoy) {
+    StudyRow r;
+    r.pan = v.pan;
+    r.tilt = v.tilt;
+    r.condition = v.condition->name;
+    r.distance = v.distance;
+    r.blur = v.blur;
+    r.noise = v.noise;
+    r.illumination = v.illumination;
+    r.background = v.condition->background;
+    r.method = method;
+    r.threshold = std::numeric_limits<double>::quiet_NaN();
+    r.decoy = decoy;
+    return r;
+  }
+
+  void score(StudyRow* r, const Eigen::Isometry3d& pose) const {
+    r->position_error_mm = 1000.0 * (pose.translation() - truth_.translation()).norm();
+    r->orientation_error_deg = rotationAngle(pose, truth_) / kDeg;
+  }
+
+  const StudyConfig& config_;
+  const StudyScene& scene_;
+  const std::string fixed_name_;
+  MarkerDetectionNet fixed_net_, feedback_net_;
+  const std::unique_ptr<Executor> calibration_net_;
+  const AprilTagDetector april_detector_;
+  Eigen::Isometry3d truth_ = Eigen::Isometry3d::Identity();  // the marker's pose in the view being measured
+};
+
+}  // namespace
+
+std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<void(int, int)>& progress) {
+  const StudyScene scene(config);
+  const std::vector<View> views = drawViews(config);
   // Built once here so a bad net file fails before any thread starts.
-  { MarkerDetectionNet check(config.net, config.marker, feedback_mode, 1); }
+  { MarkerDetectionNet check(config.net, config.marker, feedbackMode(), 1); }
   if (!config.calibration_net.empty()) Executor::loadFile(config.calibration_net);
 
-  const std::string fixed_name = "fixed" + std::to_string(config.fixed_threshold);
   std::vector<std::vector<StudyRow>> results(views.size());
   std::atomic<size_t> next{0};
   std::atomic<int> done{0};
@@ -199,107 +353,9 @@ std::vector<StudyRow> runStudy(const StudyConfig& config, const std::function<vo
   std::string first_error;
   auto worker = [&]() {
     try {
-      MarkerDetectionNet fixed_net(config.net, config.marker, fixed_mode, 1);
-      MarkerDetectionNet feedback_net(config.net, config.marker, feedback_mode, 1);
-      const std::unique_ptr<Executor> calibration_net =
-          config.calibration_net.empty() ? nullptr : Executor::loadFile(config.calibration_net);
-      const AprilTagDetector april_detector(april);
+      ViewMeasurement measurement(config, scene);
       for (size_t i; (i = next++) < views.size();) {
-        const View& v = views[i];
-        ViewSettings settings;
-        settings.distance = v.distance;
-        settings.pan = v.pan * kDeg;
-        settings.tilt = v.tilt * kDeg;
-        settings.illumination = v.illumination;
-        settings.background = v.condition->background;
-        settings.blur = v.blur;
-        settings.noise = v.noise;
-        settings.seed = v.seed;
-        Eigen::Isometry3d truth;
-        const cv::Mat square_image = renderView(*renderer, square, settings, &truth);
-        const cv::Mat tag_image = renderView(*renderer, tag, settings, nullptr);
-        std_msgs::Header header;
-        header.frame_id = info->header.frame_id;
-
-        // Every method on one rendering of the view (of the marker, or of a decoy in its place).
-        auto runMethods = [&](const cv::Mat& square_view, const cv::Mat& tag_view, bool decoy) {
-          const sensor_msgs::ImageConstPtr msg = cv_bridge::CvImage(header, "mono8", square_view).toImageMsg();
-          auto row = [&](const std::string& method) {
-            StudyRow r;
-            r.pan = v.pan;
-            r.tilt = v.tilt;
-            r.condition = v.condition->name;
-            r.distance = v.distance;
-            r.blur = v.blur;
-            r.noise = v.noise;
-            r.illumination = v.illumination;
-            r.background = v.condition->background;
-            r.method = method;
-            r.threshold = std::numeric_limits<double>::quiet_NaN();
-            r.decoy = decoy;
-            return r;
-          };
-          auto score = [&](StudyRow& r, const Eigen::Isometry3d& pose) {
-            r.position_error_mm = 1000.0 * (pose.translation() - truth.translation()).norm();
-            r.orientation_error_deg = rotationAngle(pose, truth) / kDeg;
-          };
-          for (MarkerDetectionNet* net : {&fixed_net, &feedback_net}) {
-            StudyRow r = row(net == &fixed_net ? fixed_name : "detect");
-            const MarkerDetectionNet::Result res = net->run(msg, info);
-            if (!res.error.empty()) throw std::runtime_error(res.error);
-            r.ms = res.ms;
-            r.found = res.detection->found;
-            if (r.found) {
-              r.threshold = res.detection->threshold;
-              score(r, fromPoseMsg(res.detection->pose));
-            }
-            results[i].push_back(r);
-          }
-          if (calibration_net) {
-            StudyRow r = row("calibration");
-            auto predicted = boost::make_shared<geometry_msgs::PoseStamped>();
-            predicted->header = header;
-            predicted->pose = frames::toPose(truth);
-            const auto t0 = std::chrono::steady_clock::now();
-            calibration_net->setInput("image.value", msg);
-            calibration_net->setInput("camera_info.value", sensor_msgs::CameraInfoConstPtr(info));
-            calibration_net->setInput("predicted_pose.value", geometry_msgs::PoseStampedConstPtr(predicted));
-            const RunReport report = calibration_net->run();
-            r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-            const auto region = calibration_net->output<FeedbackTrace>("region.feedback_trace");
-            const auto trace = calibration_net->output<FeedbackTrace>("feedback_trace.value");
-            const auto detection = calibration_net->output<imagenets::MarkerDetection>("detection.value");
-            // No region and threshold of the search found it: "no valid candidate", not an error.
-            if (!report.ok() && !(region && !region->found)) {
-              throw std::runtime_error(config.calibration_net + ": " + report.failed.front());
-            }
-            r.found = report.ok() && detection && detection->found;
-            if (r.found) {
-              r.threshold = trace->chosen_value;
-              score(r, fromPoseMsg(detection->pose));
-            }
-            results[i].push_back(r);
-          }
-          StudyRow r = row("apriltag");
-          const auto t0 = std::chrono::steady_clock::now();
-          const Detection d = april_detector.detect(tag_view, camera);
-          r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-          r.found = d.found;
-          if (d.found) score(r, d.pose);
-          results[i].push_back(r);
-        };
-        runMethods(square_image, tag_image, false);
-        if (config.decoys) {
-          std::mt19937_64 decoy_rng(v.seed ^ 0x5eedDec0ull);
-          render::Plane decoy_square = markerPlane(withRandomPattern(marker, &decoy_rng), Eigen::Isometry3d::Identity());
-          applyPrintReflectance(&decoy_square);
-          // tag36h11 has 587 codes; the detector looks for id 0.
-          render::Plane decoy_tag =
-              aprilTagPlane(april, 1 + static_cast<int>(decoy_rng() % 586), marker.margin, Eigen::Isometry3d::Identity());
-          applyPrintReflectance(&decoy_tag);
-          runMethods(renderView(*renderer, decoy_square, settings, nullptr),
-                     renderView(*renderer, decoy_tag, settings, nullptr), true);
-        }
+        results[i] = measurement.measure(views[i]);
         const int n = ++done;
         if (progress) {
           std::lock_guard<std::mutex> lock(progress_mutex);
