@@ -41,6 +41,7 @@ void BlockStats::record(BlockStatus new_status, const std::string& new_message, 
     last_ms = ms;
     last_cpu_ms = cpu_ms;
     mean_ms += (ms - mean_ms) / static_cast<double>(runs);
+    mean_cpu_ms += (cpu_ms - mean_cpu_ms) / static_cast<double>(runs);
   }
 }
 

@@ -111,4 +111,10 @@ TEST(BlockInvocation, MeasuresTheCallingThreadsCpuTimeBesideTheWallTime) {
   stats.record(run.status, run.message, run.ms, run.processed, run.cpu_ms);
   EXPECT_EQ(stats.last_cpu_ms, run.cpu_ms);
   EXPECT_EQ(stats.last_ms, run.ms);
+  // The means go over every run.
+  const BlockInvocation waited = invokeBlock(waits, "waits", {}, waits.propertyValues());
+  stats.record(waited.status, waited.message, waited.ms, waited.processed, waited.cpu_ms);
+  EXPECT_DOUBLE_EQ(stats.mean_cpu_ms, (run.cpu_ms + waited.cpu_ms) / 2);
+  EXPECT_DOUBLE_EQ(stats.mean_ms, (run.ms + waited.ms) / 2);
+  EXPECT_EQ(stats.last_cpu_ms, waited.cpu_ms);
 }

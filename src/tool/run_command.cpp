@@ -93,12 +93,13 @@ int run(const Args& args) {
   std::cout << "net " << net_path << ": " << report.ran.size() << " blocks ran, " << report.failed.size()
             << " failed, " << report.not_run.size() << " not run (" << executor.threads() << " threads)\n";
   std::cout << "  " << std::left << std::setw(24) << "block" << std::setw(10) << "status" << std::right
-            << std::setw(6) << "runs" << std::setw(12) << "last ms" << std::setw(12) << "mean ms" << "\n";
+            << std::setw(6) << "runs" << std::setw(12) << "last ms" << std::setw(12) << "mean ms" << std::setw(12)
+            << "last CPU ms" << std::setw(12) << "mean CPU ms" << "\n";
   for (const auto& node : executor.net().nodes()) {
     BlockStats s = executor.stats(node.name);
     std::cout << "  " << std::left << std::setw(24) << node.name << std::setw(10) << statusName(s.status) << std::right
               << std::setw(6) << s.runs << std::fixed << std::setprecision(3) << std::setw(12) << s.last_ms
-              << std::setw(12) << s.mean_ms << "\n";
+              << std::setw(12) << s.mean_ms << std::setw(12) << s.last_cpu_ms << std::setw(12) << s.mean_cpu_ms << "\n";
   }
   for (const auto& f : report.failed) std::cout << "FAILED " << f << "\n";
   for (const auto& n : report.not_run) std::cout << "not run: " << n << "\n";

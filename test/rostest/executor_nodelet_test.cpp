@@ -165,6 +165,10 @@ TEST(ExecutorNodelet, StatusShowsTheInnerRunsProgress) {
   auto s = status.get();
   EXPECT_EQ(s->status, "ok");
   EXPECT_EQ(s->progress, "repetition 1 of 1 done");
+  // Its CPU time beside the wall time (the calling thread's: within it, up to the clocks' grain).
+  EXPECT_GT(s->last_cpu_ms, 0.0);
+  EXPECT_LE(s->last_cpu_ms, s->last_ms + 0.1);
+  EXPECT_GT(s->mean_cpu_ms, 0.0);
 }
 
 }  // namespace

@@ -98,6 +98,7 @@ TEST(Tool, RunWritesOutputsAndTimings) {
   ASSERT_EQ(r.status, 0) << r.output;
   expectContains(r.output, "4 blocks ran, 0 failed");
   expectContains(r.output, "threshold               ok             1");
+  expectContains(r.output, "last ms     mean ms last CPU ms mean CPU ms");
   // Progress lines from the run events, one per block as it finishes.
   expectContains(r.output, "[4/4] ");
   expectContains(r.output, "] threshold: ok (");

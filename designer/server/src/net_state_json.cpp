@@ -71,7 +71,8 @@ nlohmann::json registryJson() {
 
 nlohmann::json statsJson(const BlockStats& s) {
   return {{"status", statusName(s.status)}, {"message", s.message}, {"runs", s.runs},
-          {"last_ms", s.last_ms},          {"mean_ms", s.mean_ms}};
+          {"last_ms", s.last_ms},          {"mean_ms", s.mean_ms},        {"last_cpu_ms", s.last_cpu_ms},
+          {"mean_cpu_ms", s.mean_cpu_ms}};
 }
 
 namespace {

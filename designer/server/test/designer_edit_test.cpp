@@ -117,6 +117,11 @@ TEST_F(DesignerTest, PropertyChangeReRunsOnlyThatBlockAndItsDownstream) {
   EXPECT_EQ(blockOf(net, "gray")["stats"]["runs"], 1);
   EXPECT_EQ(blockOf(net, "blur")["stats"]["runs"], 1);
   EXPECT_EQ(blockOf(net, "threshold")["stats"]["runs"], 2);
+  // Each block's CPU time beside its wall time (the thread's own: within it, up to the clocks' grain).
+  const json blurred = blockOf(net, "blur")["stats"];
+  EXPECT_GT(blurred["last_cpu_ms"].get<double>(), 0.0) << blurred.dump();
+  EXPECT_LE(blurred["last_cpu_ms"].get<double>(), blurred["last_ms"].get<double>() + 0.1) << blurred.dump();
+  EXPECT_EQ(blurred["mean_cpu_ms"], blurred["last_cpu_ms"]) << blurred.dump();
   // The run's events came to the tab: threshold started and finished.
   c.waitForText([](const json& j) { return j.value("op", "") == "event" && j["kind"] == "finished" && j["block"] == "threshold"; },
                 "threshold's finished event");

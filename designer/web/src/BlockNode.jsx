@@ -2,7 +2,7 @@ import React, { memo } from 'react';
 import { Handle, Position } from '@xyflow/react';
 import { Preview } from './Preview.jsx';
 
-// One block on the canvas: ports coloured by type, status and timing, preview boxes.
+// One block on the canvas: ports coloured by type, status, wall and CPU time, preview boxes.
 export const BlockNode = memo(function BlockNode({ data, selected }) {
   const { block, colors, running, cached, previews, watched, actions } = data;
   const stats = block.stats || {};
@@ -23,6 +23,10 @@ export const BlockNode = memo(function BlockNode({ data, selected }) {
         {cached && !running && <span className="cached">cached</span>}
         <span className="stats" data-runs={stats.runs ?? 0}>
           runs {stats.runs ?? 0} · {fmt(stats.last_ms)} / {fmt(stats.mean_ms)} ms
+        </span>
+        <span className="cpu" data-ms={stats.last_cpu_ms ?? 0}
+          title="CPU time of the thread that ran the block: last / mean (work handed to other threads is not in it)">
+          CPU {fmt(stats.last_cpu_ms)} / {fmt(stats.mean_cpu_ms)} ms
         </span>
         {block.feedback && <span className="feedback-tag" title="feedback">fb {block.feedback.property}</span>}
       </div>

@@ -81,6 +81,7 @@ export async function stats(page, name) {
   return page.$eval(nodeSel(name), (n) => ({
     status: n.querySelector('.status-word').textContent,
     runs: Number(n.querySelector('.stats').dataset.runs),
+    cpuMs: Number(n.querySelector('.cpu').dataset.ms),
     message: n.querySelector('.block-message')?.textContent || '',
   }));
 }

@@ -127,7 +127,10 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     await page.keyboard.down('Control');
     await page.keyboard.press('Enter');
     await page.keyboard.up('Control');
-    await untilStats(page, 'every block ok once', (s) => [source, gray, threshold, quality].every((n) => s[n].status === 'ok' && s[n].runs === 1));
+    const once = await untilStats(page, 'every block ok once', (s) => [source, gray, threshold, quality].every((n) => s[n].status === 'ok' && s[n].runs === 1));
+    // The footer shows what the run cost the block's thread beside its wall time.
+    assert.ok(once[gray].cpuMs > 0, `gray's CPU time ${once[gray].cpuMs}`);
+    assert.match(await page.$eval(`${nodeSel(gray)} .cpu`, (e) => e.textContent), /^CPU \d+\.\d+ \/ \d+\.\d+ ms$/);
     await select(page, threshold);
     await setProperty(page, 'threshold', 100);
     const s = await untilStats(page, 'threshold and quality re-run', (x) => x[threshold].runs === 2 && x[quality].runs === 2);

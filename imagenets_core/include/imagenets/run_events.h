@@ -33,6 +33,7 @@ struct BlockStats {
   // did meanwhile. Work it handed to other threads (parallel feedback trials, a sub-net with
   // more than one thread) is not in it.
   double last_cpu_ms = 0.0;
+  double mean_cpu_ms = 0.0;
   std::string last_error;  // the last failed process() call's message, kept after later successes
 
   // Records one invocation; `processed`: process() was called (it counts as a run, timed).

@@ -372,6 +372,8 @@ class BlockHost {
     s->failures = stats_.failures;
     s->last_ms = stats_.last_ms;
     s->mean_ms = stats_.mean_ms;
+    s->last_cpu_ms = stats_.last_cpu_ms;
+    s->mean_cpu_ms = stats_.mean_cpu_ms;
     s->last_error = stats_.last_error;
     s->status = running_ ? "running" : statusName(stats_.status);
     s->message = stats_.message;
