@@ -340,7 +340,8 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   ASSERT_TRUE(e->run().ok());
   EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data.size(), 8u);
   ASSERT_EQ(events.size(), 8u + 6u);  // 8 repetitions, the until net asked after the 2nd..7th
-  EXPECT_EQ(events[2], "loop: repetition 2 of 8 done (until net failed: sum: input 'threshold': -1.000000 is below 0)");
+  EXPECT_EQ(events[2], "loop: repetition 2 of 8 done (until net failed: block 'sum' (test/SumAtLeast): input "
+                       "'threshold': -1.000000 is below 0)");
   EXPECT_EQ(events.back(), "loop: repetition 8 of 8 done");
   e->setProperty("loop", "max_repeat", 1);
   const RunReport below = e->run();
