@@ -221,6 +221,38 @@ links: [counter.count -> out.value]
   EXPECT_FALSE(strict->output<std_msgs::Float64MultiArray>("loop.n_all"));
 }
 
+// An until net is asked only once a repetition has succeeded; until then the events say so.
+TEST(SubNet, AnUntilNetIsNotAskedBeforeARepetitionSucceeded) {
+  write("failing.yaml", R"(
+blocks:
+  counter: {type: test/Counter, properties: {fail_every: 1}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
+links: [counter.count -> out.value]
+)");
+  write("any_sum.yaml", R"(
+blocks:
+  n_all: {type: imagenets/ExecutorInput, properties: {port: n_all, type: std_msgs/Float64MultiArray}}
+  zero: {type: test/Constant, properties: {value: 0}}
+  sum: {type: test/SumAtLeast}
+  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+links: [n_all.value -> sum.values, zero.value -> sum.threshold, sum.reached -> done.value]
+)");
+  write("never_asked.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: failing.yaml, "
+                            "max_failures: 3, until_net: any_sum.yaml, max_repeat: 3}}\n");
+  auto e = loadFile("never_asked.yaml");
+  std::mutex mutex;
+  std::vector<std::string> events;
+  e->addObserver([&](const RunEvent& ev) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (ev.kind == RunEventKind::Repetition) events.push_back(describe(ev));
+  });
+  ASSERT_TRUE(e->run().ok());  // every repetition failed, as max_failures allows
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_NE(events[0].find("repetition 1 of 3 done (failed: "), std::string::npos) << events[0];
+  EXPECT_NE(events[0].find("; until net not asked: no repetition has succeeded yet)"), std::string::npos) << events[0];
+  EXPECT_EQ(events[2].find("until net"), std::string::npos) << events[2];  // none may follow the last
+}
+
 // Indices as numbers, so a test sees every repetition's (a library adds collectors for its types).
 CollectorRegistration<std_msgs::Int32, std_msgs::Float64MultiArray> indices(
     [](const std::vector<std_msgs::Int32::ConstPtr>& items) {
