@@ -54,7 +54,7 @@ std::string describe(const RunEvent& e) {
     case RunEventKind::BlockFinished:
       text += statusName(e.stats.status);
       if (e.stats.status == BlockStatus::Ok) {
-        std::snprintf(number, sizeof number, " (%.3f ms)", e.stats.last_ms);
+        std::snprintf(number, sizeof number, " (%.3f ms, CPU %.3f ms)", e.stats.last_ms, e.stats.last_cpu_ms);
         text += number;
       }
       return e.stats.message.empty() ? text : text + ": " + e.stats.message;

@@ -18,7 +18,7 @@ namespace imagenets {
 namespace tool {
 namespace {
 
-// Progress lines: "[k/N] block: status (ms)" for the net's own blocks, indented lines for blocks
+// Progress lines: "[k/N] block: status (ms, CPU ms)" for the net's own blocks, indented lines for blocks
 // inside sub-nets ("sub/inner") and sub-net repetitions; feedback trials with `trials`.
 RunObserver progressPrinter(const Net& net, bool trials) {
   auto mutex = std::make_shared<std::mutex>();

@@ -102,6 +102,7 @@ TEST(Tool, RunWritesOutputsAndTimings) {
   // Progress lines from the run events, one per block as it finishes.
   expectContains(r.output, "[4/4] ");
   expectContains(r.output, "] threshold: ok (");
+  expectContains(r.output, " ms, CPU ");
   EXPECT_TRUE(boost::filesystem::exists(dir + "/threshold.image.png"));
   EXPECT_TRUE(boost::filesystem::exists(dir + "/gray.image.png"));
   // A bad --set is named and nothing runs.
