@@ -1,6 +1,7 @@
 // Hierarchy (paper 3.5): nets as blocks, nested, in parallel, repeated.
 #include <fstream>
 #include <mutex>
+#include <utility>
 
 #include <geometry_msgs/PoseArray.h>
 #include <gtest/gtest.h>
@@ -198,14 +199,16 @@ links: [counter.count -> out.value]
   EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("loop.n")->data, 5.0);
 }
 
+// A net whose counter fails every `fail_every`-th run, and hands out its count as `n`.
+std::string counterNet(int fail_every) {
+  return "blocks:\n  counter: {type: test/Counter, properties: {fail_every: " + std::to_string(fail_every) +
+         "}}\n  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}\n"
+         "links: [counter.count -> out.value]\n";
+}
+
 TEST(SubNet, FailedRepetitionsAreLeftOutOrFailTheBlock) {
   // Every 2nd run of the inner counter fails: runs 2 and 4 of 5.
-  write("flaky.yaml", R"(
-blocks:
-  counter: {type: test/Counter, properties: {fail_every: 2}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
-links: [counter.count -> out.value]
-)");
+  write("flaky.yaml", counterNet(2));
   write("tolerant.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: flaky.yaml, repeat: 5, max_failures: 2}}\n");
   auto tolerant = loadFile("tolerant.yaml");
   ASSERT_TRUE(tolerant->run().ok());
@@ -221,14 +224,30 @@ links: [counter.count -> out.value]
   EXPECT_FALSE(strict->output<std_msgs::Float64MultiArray>("loop.n_all"));
 }
 
+// What a run's repetition events said (describe()), and "until" where the until net's `sum`
+// finished, in the order they came.
+class RepetitionLog {
+ public:
+  explicit RepetitionLog(Executor& e) {
+    e.addObserver([this](const RunEvent& ev) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (ev.kind == RunEventKind::Repetition) events_.push_back(describe(ev));
+      if (ev.kind == RunEventKind::BlockFinished && ev.block == "loop/until/sum") events_.push_back("until");
+    });
+  }
+  std::vector<std::string> take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return std::exchange(events_, {});
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::string> events_;
+};
+
 // An until net is asked only once a repetition has succeeded; until then the events say so.
 TEST(SubNet, AnUntilNetIsNotAskedBeforeARepetitionSucceeded) {
-  write("failing.yaml", R"(
-blocks:
-  counter: {type: test/Counter, properties: {fail_every: 1}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
-links: [counter.count -> out.value]
-)");
+  write("failing.yaml", counterNet(1));
   write("any_sum.yaml", R"(
 blocks:
   n_all: {type: imagenets/ExecutorInput, properties: {port: n_all, type: std_msgs/Float64MultiArray}}
@@ -240,13 +259,9 @@ links: [n_all.value -> sum.values, zero.value -> sum.threshold, sum.reached -> d
   write("never_asked.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: failing.yaml, "
                             "max_failures: 3, until_net: any_sum.yaml, max_repeat: 3}}\n");
   auto e = loadFile("never_asked.yaml");
-  std::mutex mutex;
-  std::vector<std::string> events;
-  e->addObserver([&](const RunEvent& ev) {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (ev.kind == RunEventKind::Repetition) events.push_back(describe(ev));
-  });
+  RepetitionLog log(*e);
   ASSERT_TRUE(e->run().ok());  // every repetition failed, as max_failures allows
+  const std::vector<std::string> events = log.take();
   ASSERT_EQ(events.size(), 3u);
   EXPECT_NE(events[0].find("repetition 1 of 3 done (failed: "), std::string::npos) << events[0];
   EXPECT_NE(events[0].find("; until net not asked: no repetition has succeeded yet)"), std::string::npos) << events[0];
@@ -332,13 +347,7 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   write("until.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, repeat: 2, "
                       "repetition_input: k, until_net: sum_reached.yaml, max_repeat: 8}}\n");
   auto e = loadFile("until.yaml");
-  std::mutex mutex;
-  std::vector<std::string> events;
-  e->addObserver([&](const RunEvent& ev) {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (ev.kind == RunEventKind::Repetition) events.push_back(describe(ev));
-    if (ev.kind == RunEventKind::BlockFinished && ev.block == "loop/until/sum") events.push_back("until");
-  });
+  RepetitionLog log(*e);
   auto target = [&](double t) {
     auto v = boost::make_shared<std_msgs::Float64>();
     v->data = t;
@@ -349,11 +358,11 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   ASSERT_TRUE(e->run().ok());
   EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1, 2, 3, 4}));
   // Each repetition's event says what the until net said after it.
-  EXPECT_EQ(events, (std::vector<std::string>{"loop: repetition 1 of 8 done", "until",
-                                              "loop: repetition 2 of 8 done (until net: not done)", "until",
-                                              "loop: repetition 3 of 8 done (until net: not done)", "until",
-                                              "loop: repetition 4 of 8 done (until net: not done)", "until",
-                                              "loop: repetition 5 of 8 done (until net: done)"}));
+  EXPECT_EQ(log.take(), (std::vector<std::string>{"loop: repetition 1 of 8 done", "until",
+                                                 "loop: repetition 2 of 8 done (until net: not done)", "until",
+                                                 "loop: repetition 3 of 8 done (until net: not done)", "until",
+                                                 "loop: repetition 4 of 8 done (until net: not done)", "until",
+                                                 "loop: repetition 5 of 8 done (until net: done)"}));
   // Done at once: the N repetitions always run.
   target(0);
   ASSERT_TRUE(e->run().ok());
@@ -365,12 +374,10 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   // An until net that fails is not done either; every repetition's event says why, not only the
   // until net's own block event.
   target(-1);
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    events.clear();
-  }
+  log.take();
   ASSERT_TRUE(e->run().ok());
   EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data.size(), 8u);
+  const std::vector<std::string> events = log.take();
   ASSERT_EQ(events.size(), 8u + 6u);  // 8 repetitions, the until net asked after the 2nd..7th
   EXPECT_EQ(events[2], "loop: repetition 2 of 8 done (until net failed: block 'sum' (test/SumAtLeast): input "
                        "'threshold': -1.000000 is below 0)");
