@@ -504,7 +504,7 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
         }
       }
       const imagenets::Executor* sample_net = inner ? inner->innerExecutor() : nullptr;
-      if (!sample_net || !e.message.empty()) return;
+      if (!sample_net || e.stats.status != imagenets::BlockStatus::Ok) return;
       StereoPair pair;
       try {
         pair.left = sample_net->output<sensor_msgs::Image>("left_image.value");

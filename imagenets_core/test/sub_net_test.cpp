@@ -231,18 +231,28 @@ class RepetitionLog {
   explicit RepetitionLog(Executor& e) {
     e.addObserver([this](const RunEvent& ev) {
       std::lock_guard<std::mutex> lock(mutex_);
-      if (ev.kind == RunEventKind::Repetition) events_.push_back(describe(ev));
+      if (ev.kind == RunEventKind::Repetition) {
+        events_.push_back(describe(ev));
+        statuses_.push_back(ev.stats.status);
+      }
       if (ev.kind == RunEventKind::BlockFinished && ev.block == "loop/until/sum") events_.push_back("until");
     });
   }
   std::vector<std::string> take() {
     std::lock_guard<std::mutex> lock(mutex_);
+    statuses_.clear();
     return std::exchange(events_, {});
+  }
+  // Each repetition's status so far (the typed one: the event's text also holds the until net's answer).
+  std::vector<BlockStatus> statuses() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return statuses_;
   }
 
  private:
   std::mutex mutex_;
   std::vector<std::string> events_;
+  std::vector<BlockStatus> statuses_;
 };
 
 // An until net is asked only once a repetition has succeeded; until then the events say so.
@@ -261,6 +271,7 @@ links: [n_all.value -> sum.values, zero.value -> sum.threshold, sum.reached -> d
   auto e = loadFile("never_asked.yaml");
   RepetitionLog log(*e);
   ASSERT_TRUE(e->run().ok());  // every repetition failed, as max_failures allows
+  EXPECT_EQ(log.statuses(), std::vector<BlockStatus>(3, BlockStatus::Failed));
   const std::vector<std::string> events = log.take();
   ASSERT_EQ(events.size(), 3u);
   EXPECT_NE(events[0].find("repetition 1 of 3 done (failed: "), std::string::npos) << events[0];
@@ -357,7 +368,8 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   target(10);
   ASSERT_TRUE(e->run().ok());
   EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1, 2, 3, 4}));
-  // Each repetition's event says what the until net said after it.
+  // Each repetition's event says what the until net said after it; its status stays ok.
+  EXPECT_EQ(log.statuses(), std::vector<BlockStatus>(5, BlockStatus::Ok));
   EXPECT_EQ(log.take(), (std::vector<std::string>{"loop: repetition 1 of 8 done", "until",
                                                  "loop: repetition 2 of 8 done (until net: not done)", "until",
                                                  "loop: repetition 3 of 8 done (until net: not done)", "until",

@@ -11,6 +11,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <sensor_msgs/Image.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_msgs/TFMessage.h>
@@ -274,11 +275,19 @@ TEST_F(FriendCalibration, AnUncertaintyTargetAddsThePlansNextPosesUntilItIsMet) 
   imagenets::CallingThreadQueue clients;
   actionlib::SimpleActionClient<imagenets::CalibrateAction> client(clients.nodeHandle(),
                                                                    "/friend_calibration/calibrate_action", false);
+  // Every sample's stereo pair is drawn with its detections, also those after which the until net
+  // was asked for the bound (a latched topic: what came before the goal is not counted).
+  bool sent = false;
+  int drawn = 0;
+  ros::Subscriber drawings = clients.nodeHandle().subscribe<sensor_msgs::Image>(
+      "/friend_calibration/detections/left/image", 20, [&](const sensor_msgs::ImageConstPtr&) { drawn += sent; });
   ASSERT_TRUE(clients.waitUntil([&client] { return client.isServerConnected(); }, 10));
+  clients.waitUntil([] { return false; }, 1.0);  // the latched image of an earlier test, if any
   imagenets::CalibrateGoal goal;
   goal.poses = requested;
   goal.target_uncertainty = target;
   goal.max_poses = max_poses;
+  sent = true;
   client.sendGoal(goal, {}, {}, [&](const imagenets::CalibrateFeedbackConstPtr& f) {
     EXPECT_EQ(f->samples, max_poses);
     if (f->stage == "uncertainty") bounds.emplace_back(f->sample, f->uncertainty);
@@ -293,6 +302,8 @@ TEST_F(FriendCalibration, AnUncertaintyTargetAddsThePlansNextPosesUntilItIsMet) 
   EXPECT_GT(res->poses_taken, requested) << res->message;
   EXPECT_LE(res->poses_taken, max_poses) << res->message;
   EXPECT_EQ(res->samples_used + res->samples_rejected, res->poses_taken) << res->message;
+  EXPECT_TRUE(clients.waitUntil([&] { return drawn >= res->poses_taken; }, 5)) << drawn << " drawings";
+  EXPECT_EQ(drawn, res->poses_taken);
   EXPECT_GT(res->uncertainty, 0.0);
   if (res->target_met) {
     EXPECT_LE(res->uncertainty, target) << res->message;

@@ -55,15 +55,19 @@ struct RunEvent {
   // The block's name in the observed executor's net. Events of blocks inside a sub-net carry the
   // path "outer/inner" (any depth), so one observer sees the whole hierarchy.
   std::string block;
-  BlockStats stats;     // BlockFinished, BlockCached: the block's stats after the event
-  std::string message;  // FeedbackTrial: the tuned property; Repetition: "failed: ..." if it failed
+  // BlockFinished, BlockCached: the block's stats after the event; Repetition: only `status` (ok or
+  // failed) and, when it failed, `message` (why): test these, not the text of `message` below.
+  BlockStats stats;
+  // FeedbackTrial: the tuned property; Repetition: for people, "failed: ..." if it failed, and
+  // what an until net answered after it ("until net: not done").
+  std::string message;
   double value = std::numeric_limits<double>::quiet_NaN();  // FeedbackTrial: the candidate tried
   double score = std::numeric_limits<double>::quiet_NaN();  // FeedbackTrial: its score (NaN: invalid)
   int index = 0;  // FeedbackTrial: trials done so far; Repetition: the repetition just done (1-based)
   int count = 0;  // FeedbackTrial: the number of candidates; Repetition: N
 };
 
-// One line for people: "threshold: ok (1.234 ms)", "loop: repetition 2 of 5 done",
+// One line for people: "threshold: ok (1.234 ms, CPU 1.200 ms)", "loop: repetition 2 of 5 done",
 // "threshold: feedback trial 3 of 41: threshold = 90 -> score 0.75".
 std::string describe(const RunEvent& event);
 

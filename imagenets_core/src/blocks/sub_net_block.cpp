@@ -241,7 +241,9 @@ void SubNetBlock::process(Context& ctx) {
     done.kind = RunEventKind::Repetition;
     done.index = i + 1;
     done.count = max_repeat;
+    done.stats.status = report.failed.empty() ? BlockStatus::Ok : BlockStatus::Failed;
     if (!report.failed.empty()) {
+      done.stats.message = report.failed.front();
       done.message = "failed: " + report.failed.front();
       // Its outputs may still hold the previous repetition's values: none of them is taken.
       if (++failures == 1) {
