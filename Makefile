@@ -9,6 +9,8 @@
 # Debian's python must come first: catkin needs its ROS modules (a pyenv python has none).
 export PATH := /usr/bin:/bin:$(PATH)
 export ROS_HOSTNAME ?= localhost
+# ccache keys on paths relative to the checkout, so clones and worktrees share one cache.
+export CCACHE_BASEDIR ?= $(CURDIR)
 BUILD ?= build
 DEVEL ?= devel
 JOBS ?= 2
