@@ -1,10 +1,9 @@
 # Two commands for a bare Debian 12 (as root, or with sudo):
 #   make demo   the main job
 #   make test   build everything and run every test (gtest + rostest, via ctest)
-# Both install missing Debian packages first, then configure and build: CMake's files go to build/,
-# the catkin devel space (executables, libraries, setup.bash) to devel/ beside it, as in any catkin
-# workspace. Not under build/: rosrun never looks below <package>/build/, and this package is the
-# repository root.
+# Both install missing Debian packages first, then configure and build the repository as a catkin
+# workspace (one package per folder): CMake's files go to build/, the devel space (executables,
+# libraries, setup.bash) to devel/, as catkin_make does.
 
 # Debian's python must come first: catkin needs its ROS modules (a pyenv python has none).
 export PATH := /usr/bin:/bin:$(PATH)
@@ -25,9 +24,12 @@ deps:
 	@scripts/install-deps
 
 # Configures once; again only when the build folder's devel space is not $(DEVEL) (older layout).
+# Without ROS_PACKAGE_PATH: catkin caches the environment the devel space adds (the tests run in
+# it), and a shell that sourced devel/setup.bash already would leave the workspace out of it.
 configure: deps
+	@mkdir -p $(BUILD) $(DEVEL) && touch $(BUILD)/CATKIN_IGNORE $(DEVEL)/CATKIN_IGNORE  # not packages
 	@grep -qx 'CATKIN_DEVEL_PREFIX:PATH=$(abspath $(DEVEL))' $(BUILD)/CMakeCache.txt 2>/dev/null || \
-	  cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+	  env -u ROS_PACKAGE_PATH cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
 
 build: configure
 	cmake --build $(BUILD) -j$(JOBS)

@@ -11,12 +11,13 @@
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 
-#include "friend_calibration/bundle_adjustment.h"
-#include "friend_calibration/calibration_msgs.h"
-#include "friend_calibration/storage.h"
+#include "imagenets_calibration/bundle_adjustment.h"
+#include "imagenets_calibration/calibration_msgs.h"
+#include "imagenets_calibration/storage.h"
 #include "friend_hw_sim/true_robot.h"
+#include "imagenets/package_file.h"
 
-namespace friend_calibration {
+namespace imagenets_calibration {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -27,13 +28,12 @@ struct Simulated {
 };
 
 struct BundleAdjustmentTest : ::testing::Test {
-  RobotModel model{robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath())};
+  RobotModel model{robot_description::loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml"))};
   StereoCameras cameras = *stereoCamerasOf(model.description(), nullptr);
   std::vector<Eigen::Vector3d> points = markerDefinedPoints(model.description().marker_size);
 
   static std::string trueErrorFile() {
-    const std::string desc = robot_description::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
-    return desc.substr(0, desc.size() - std::string("robot.yaml").size()) + "true_error.yaml";
+    return imagenets::packageFile("friend_hw_sim", "config/true_error.yaml");
   }
 
   // One detection as the detector reports it: noisy distorted points, the pose fitted to them.
@@ -153,7 +153,7 @@ TEST_F(BundleAdjustmentTest, TrueErrorLiesWithinTheReportedThreeSigmaAndIsNoWors
 // same calibration (poses, joint method, pixel-level fit) finds its fixed point within the
 // targets and within its reported 3 sigma.
 TEST_F(BundleAdjustmentTest, ASixJointRobotThatExistsOnlyAsAUrdfIsCalibratedToo) {
-  model = RobotModel(robot_description::loadRobotDescription("config/six_axis/robot.yaml"));
+  model = RobotModel(robot_description::loadRobotDescription(imagenets::packageFile("robot_description", "config/six_axis/robot.yaml")));
   ASSERT_EQ(model.description().arm.joints.size(), 6u);
   cameras = *stereoCamerasOf(model.description(), nullptr);
   points = markerDefinedPoints(model.description().marker_size);
@@ -358,4 +358,4 @@ TEST_F(BundleAdjustmentTest, AGoodCalibrationIsNotOverwrittenByOneWithAnUncertai
 }
 
 }  // namespace
-}  // namespace friend_calibration
+}  // namespace imagenets_calibration

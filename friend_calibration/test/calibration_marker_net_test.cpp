@@ -14,12 +14,12 @@
 #include <sensor_msgs/Image.h>
 
 #include "calibration_views.h"
-#include "friend_calibration/calibration_marker_net.h"
+#include "imagenets_calibration/calibration_marker_net.h"
 #include "imagenets/blocks/image.h"
 #include "imagenets/executor.h"
 #include "imagenets/net.h"
 
-using namespace friend_calibration;
+using namespace imagenets_calibration;
 
 namespace {
 

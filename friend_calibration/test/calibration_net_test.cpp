@@ -8,21 +8,21 @@
 #include <random>
 
 #include <gtest/gtest.h>
-#include <imagenets/CalibrationResult.h>
+#include <imagenets_calibration_msgs/CalibrationResult.h>
 
-#include "friend_calibration/calibration_msgs.h"
-#include "friend_calibration/storage.h"
+#include "imagenets_calibration/calibration_msgs.h"
+#include "imagenets_calibration/storage.h"
 #include "imagenets/executor.h"
 #include "imagenets/net.h"
+#include "imagenets/package_file.h"
 
-namespace friend_calibration {
+namespace imagenets_calibration {
 namespace {
 
 namespace fs = std::filesystem;
 
 std::string netsDir() {
-  const std::string desc = robot_description::defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
-  return desc.substr(0, desc.size() - std::string("friend/robot.yaml").size()) + "nets/";
+  return imagenets::packageFile("friend_calibration", "config/nets/");
 }
 
 void setProperty(imagenets::NetSpec& spec, const std::string& block, const std::string& name, const std::string& text) {
@@ -41,7 +41,7 @@ void setProperty(imagenets::NetSpec& spec, const std::string& block, const std::
 }
 
 struct CalibrationNet : ::testing::Test {
-  RobotModel model{robot_description::loadRobotDescription(robot_description::defaultRobotDescriptionPath())};
+  RobotModel model{robot_description::loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml"))};
   fs::path dir = fs::temp_directory_path() / ("calibration_net_" + std::to_string(::getpid()));
   void SetUp() override { fs::create_directories(dir); }
   void TearDown() override { fs::remove_all(dir); }
@@ -89,15 +89,15 @@ struct CalibrationNet : ::testing::Test {
     return file;
   }
 
-  imagenets::CalibrationResult::ConstPtr replay(const std::string& file, const std::string& method) {
+  imagenets_calibration_msgs::CalibrationResult::ConstPtr replay(const std::string& file, const std::string& method) {
     imagenets::NetSpec spec = imagenets::parseNetFile(netsDir() + "calibration.yaml");
-    setProperty(spec, "samples", "net", netsDir() + "calibration_sample_replay.yaml");
+    setProperty(spec, "samples", "net", imagenets::packageFile("imagenets_calibration", "config/nets/calibration_sample_replay.yaml"));
     setProperty(spec, "plan", "replay", file);
     setProperty(spec, "plan", "method", method);
     imagenets::Executor exec(imagenets::Net::build(spec), imagenets::ExecutorOptions{2});
     const imagenets::RunReport report = exec.run();
     EXPECT_TRUE(report.ok()) << (report.failed.empty() ? "" : report.failed.front());
-    return exec.output<imagenets::CalibrationResult>("result.value");
+    return exec.output<imagenets_calibration_msgs::CalibrationResult>("result.value");
   }
 };
 
@@ -154,7 +154,7 @@ TEST_F(CalibrationNet, ABadReplayFileIsANamedError) {
   text.replace(open, close - open + 1, "[elbow]");
   std::ofstream(file) << text;
   imagenets::NetSpec spec = imagenets::parseNetFile(netsDir() + "calibration.yaml");
-  setProperty(spec, "samples", "net", netsDir() + "calibration_sample_replay.yaml");
+  setProperty(spec, "samples", "net", imagenets::packageFile("imagenets_calibration", "config/nets/calibration_sample_replay.yaml"));
   setProperty(spec, "plan", "replay", file);
   imagenets::Executor exec(imagenets::Net::build(spec), imagenets::ExecutorOptions{2});
   const imagenets::RunReport report = exec.run();
@@ -164,4 +164,4 @@ TEST_F(CalibrationNet, ABadReplayFileIsANamedError) {
 }
 
 }  // namespace
-}  // namespace friend_calibration
+}  // namespace imagenets_calibration

@@ -4,25 +4,25 @@
 
 #include <camera_calibration_parsers/parse.h>
 
-#include "friend_calibration/calibration.h"
+#include "imagenets_calibration/calibration.h"
 #include "friend_hw_sim/cameras.h"
 #include "friend_hw_sim/true_robot.h"
 #include "robot_description/robot_model.h"
+#include "imagenets/package_file.h"
 
-namespace friend_calibration {
+namespace imagenets_calibration {
 
 namespace render = imagenets::render;
 
 CalibrationViews renderCalibrationViews() {
-  const std::string desc_path = robot_description::defaultRobotDescriptionPath();
-  const std::string root = desc_path.substr(0, desc_path.size() - std::string("config/friend/robot.yaml").size());
+  const std::string desc_path = imagenets::packageFile("friend_description", "config/robot.yaml");
   const auto nominal_desc = robot_description::loadRobotDescription(desc_path);
   const RobotModel nominal(nominal_desc);
   const RobotModel truth(friend_hw_sim::applyTrueError(
-      nominal_desc, friend_hw_sim::loadTrueError(root + "config/friend/true_error.yaml", nominal_desc)));
-  const auto world = friend_hw_sim::loadWorldScene(root + "config/friend/scene.yaml");
+      nominal_desc, friend_hw_sim::loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), nominal_desc)));
+  const auto world = friend_hw_sim::loadWorldScene(imagenets::packageFile("friend_hw_sim", "config/scene.yaml"));
   CalibrationViews out;
-  out.marker = imagenets::marker::MarkerDescription::load(root + "config/markers/gripper.yaml");
+  out.marker = imagenets::marker::MarkerDescription::load(imagenets::packageFile("imagenets_vision", "config/markers/gripper.yaml"));
   const auto& marker = out.marker;
   const render::Plane plane = imagenets::marker::markerPlane(marker, Eigen::Isometry3d::Identity());
   sensor_msgs::CameraInfo info[2];
@@ -67,4 +67,4 @@ CalibrationViews renderCalibrationViews() {
   return out;
 }
 
-}  // namespace friend_calibration
+}  // namespace imagenets_calibration

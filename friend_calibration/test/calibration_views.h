@@ -14,7 +14,7 @@
 
 #include "imagenets/vision/marker.h"
 
-namespace friend_calibration {
+namespace imagenets_calibration {
 
 struct CalibrationView {
   cv::Mat image;  // mono8 1024x768
@@ -30,4 +30,4 @@ struct CalibrationViews {
 
 CalibrationViews renderCalibrationViews();
 
-}  // namespace friend_calibration
+}  // namespace imagenets_calibration

@@ -13,10 +13,10 @@
 #include "imagenets/vision/frames.h"
 #include "imagenets/vision/marker.h"
 #include "imagenets/vision/read_camera_info.h"
+#include "imagenets/package_file.h"
 
 namespace friend_hw_sim {
 
-using robot_description::defaultRobotDescriptionPath;
 using robot_description::fromXyzRpy;
 using robot_description::RobotModel;
 
@@ -225,12 +225,10 @@ CameraSim::Camera CameraSim::makeCamera(ros::NodeHandle nh, const std::string& n
 
 CameraSim::CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& sim)
     : nh_(nh), pnh_(pnh), sim_(sim), rng_(static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + 101) {
-  const std::string desc = defaultRobotDescriptionPath();
-  const std::string config = desc.substr(0, desc.size() - std::string("friend/robot.yaml").size());
-  world_ = loadWorldScene(pnh_.param<std::string>("scene", config + "friend/scene.yaml"));
+  world_ = loadWorldScene(pnh_.param<std::string>("scene", imagenets::packageFile("friend_hw_sim", "config/scene.yaml")));
   // The gripper marker as printed (config/markers/gripper.yaml: border, pattern, white margin).
   const auto& d = sim_.nominal().description();
-  const std::string marker_file = pnh_.param<std::string>("marker", config + "markers/gripper.yaml");
+  const std::string marker_file = pnh_.param<std::string>("marker", imagenets::packageFile("imagenets_vision", "config/markers/gripper.yaml"));
   const auto marker = imagenets::marker::MarkerDescription::load(marker_file);
   if (std::abs(marker.size - d.marker_size) > 1e-9) {
     throw std::runtime_error("marker '" + marker_file + "' is " + std::to_string(marker.size) +
@@ -241,7 +239,7 @@ CameraSim::CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& s
   const int ss = pnh_.param("camera/supersampling", 2);
   left_ = makeCamera(nh_, "stereo/left", d.left_camera_info, d.left_camera.frame, ss);
   right_ = makeCamera(nh_, "stereo/right", d.right_camera_info, d.right_camera_frame, ss);
-  hand_ = makeCamera(nh_, "hand_camera", config + "cameras/friend_hand_camera.yaml", d.hand_camera.frame, ss);
+  hand_ = makeCamera(nh_, "hand_camera", imagenets::packageFile("friend_description", "config/cameras/friend_hand_camera.yaml"), d.hand_camera.frame, ss);
   // The world's planes as thin boxes for rviz (latched: the world does not change).
   scene_markers_ = nh_.advertise<visualization_msgs::MarkerArray>("scene_markers", 1, true);
   visualization_msgs::MarkerArray markers;

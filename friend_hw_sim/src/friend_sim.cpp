@@ -11,26 +11,17 @@
 #include "friend_hw_sim/true_robot.h"
 #include "imagenets/vision/frames.h"
 #include "robot_description/urdf_writer.h"
+#include "imagenets/package_file.h"
 
 namespace friend_hw_sim {
 
-using robot_description::defaultRobotDescriptionPath;
 using robot_description::loadRobotDescription;
-
-namespace {
-
-std::string packagePath(const std::string& rel) {
-  const std::string desc = defaultRobotDescriptionPath();  // .../config/friend/robot.yaml
-  return desc.substr(0, desc.size() - std::string("config/friend/robot.yaml").size()) + rel;
-}
-
-}  // namespace
 
 FriendSim::FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
-      nominal_(loadRobotDescription(pnh.param<std::string>("description", defaultRobotDescriptionPath()))),
-      true_error_file_(pnh.param<std::string>("true_error", packagePath("config/friend/true_error.yaml"))),
+      nominal_(loadRobotDescription(pnh.param<std::string>("description", imagenets::packageFile("friend_description", "config/robot.yaml")))),
+      true_error_file_(pnh.param<std::string>("true_error", imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"))),
       truth_(std::make_shared<const robot_description::RobotModel>(
           applyTrueError(nominal_.description(),
                          loadTrueError(true_error_file_, nominal_.description(), pnh.param<int>("seed", -1),
@@ -70,7 +61,7 @@ std::shared_ptr<const robot_description::RobotModel> FriendSim::truth() const {
   return truth_;
 }
 
-bool FriendSim::setTrueRobot(imagenets::SetTrueRobot::Request& req, imagenets::SetTrueRobot::Response& res) {
+bool FriendSim::setTrueRobot(friend_msgs::SetTrueRobot::Request& req, friend_msgs::SetTrueRobot::Response& res) {
   const double magnitude = req.magnitude == 0 ? 1.0 : req.magnitude;
   std::shared_ptr<const robot_description::RobotModel> next;
   try {
@@ -197,7 +188,7 @@ void FriendSim::publishWrench(const RobotState& s) {
   wrench_.publish(w);
 }
 
-bool FriendSim::setObject(imagenets::WorldModelSet::Request& req, imagenets::WorldModelSet::Response& res) {
+bool FriendSim::setObject(friend_msgs::WorldModelSet::Request& req, friend_msgs::WorldModelSet::Response& res) {
   if (req.name.empty()) {
     res.success = false;
     res.message = "world_model/set: the object name is empty";
@@ -220,7 +211,7 @@ bool FriendSim::setObject(imagenets::WorldModelSet::Request& req, imagenets::Wor
   return true;
 }
 
-bool FriendSim::getObject(imagenets::WorldModelGet::Request& req, imagenets::WorldModelGet::Response& res) {
+bool FriendSim::getObject(friend_msgs::WorldModelGet::Request& req, friend_msgs::WorldModelGet::Response& res) {
   std::lock_guard<std::mutex> lock(mutex_);
   for (const auto& kv : world_) res.names.push_back(kv.first);
   if (req.name.empty()) {

@@ -9,9 +9,10 @@
 #include "friend_hw_sim/true_robot.h"
 #include "robot_description/robot_model.h"
 #include "robot_description/urdf_writer.h"
+#include "imagenets/package_file.h"
 
 int main(int argc, char** argv) {
-  std::string description = robot_description::defaultRobotDescriptionPath(), error_file, name = "friend";
+  std::string description = imagenets::packageFile("friend_description", "config/robot.yaml"), error_file, name = "friend";
   int seed = -1;
   double magnitude = 1.0;
   try {

@@ -21,8 +21,8 @@ JointGroupServer::~JointGroupServer() {
   active_ = false;
 }
 
-imagenets::MoveJointsResult JointGroupServer::resultLocked(const std::string& message) const {
-  imagenets::MoveJointsResult r;
+friend_msgs::MoveJointsResult JointGroupServer::resultLocked(const std::string& message) const {
+  friend_msgs::MoveJointsResult r;
   r.joint_names = chain_.names();
   r.positions = q_;
   r.message = message;
@@ -120,7 +120,7 @@ void JointGroupServer::step(double sim_dt) {
     active_ = false;
     return;
   }
-  imagenets::MoveJointsFeedback fb;
+  friend_msgs::MoveJointsFeedback fb;
   fb.joint_names = chain_.names();
   fb.positions = q_;
   fb.progress = progress;

@@ -10,6 +10,7 @@
 #include "friend_hw_sim/cameras.h"
 #include "robot_description/robot_model.h"
 #include "imagenets/vision/marker.h"
+#include "imagenets/package_file.h"
 
 using namespace friend_hw_sim;
 using namespace robot_description;
@@ -18,15 +19,15 @@ namespace render = imagenets::render;
 namespace {
 
 struct SimScene {
-  RobotModel model{loadRobotDescription("config/friend/robot.yaml")};
-  WorldScene world = loadWorldScene("config/friend/scene.yaml");
+  RobotModel model{loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml"))};
+  WorldScene world = loadWorldScene(imagenets::packageFile("friend_hw_sim", "config/scene.yaml"));
   render::Plane marker = imagenets::marker::markerPlane(
-      imagenets::marker::MarkerDescription::load("config/markers/gripper.yaml"), Eigen::Isometry3d::Identity());
+      imagenets::marker::MarkerDescription::load(imagenets::packageFile("imagenets_vision", "config/markers/gripper.yaml")), Eigen::Isometry3d::Identity());
   std::unique_ptr<render::Renderer> renderer;
   SimScene() {
     sensor_msgs::CameraInfo info;
     std::string name;
-    EXPECT_TRUE(camera_calibration_parsers::readCalibration("config/cameras/friend_stereo_left.yaml", name, info));
+    EXPECT_TRUE(camera_calibration_parsers::readCalibration(imagenets::packageFile("friend_description", "config/cameras/friend_stereo_left.yaml"), name, info));
     renderer = std::make_unique<render::Renderer>(render::CameraModel::fromCameraInfo(info), 1);
   }
 };

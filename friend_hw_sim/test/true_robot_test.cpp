@@ -5,6 +5,7 @@
 
 #include "friend_hw_sim/joint_trajectory.h"
 #include "friend_hw_sim/true_robot.h"
+#include "imagenets/package_file.h"
 
 using namespace friend_hw_sim;
 using robot_description::loadRobotDescription;
@@ -14,7 +15,7 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 const robot_description::RobotDescription& friendRobot() {
-  static const auto d = loadRobotDescription("config/friend/robot.yaml");
+  static const auto d = loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml"));
   return d;
 }
 
@@ -24,8 +25,8 @@ double angleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 }  // namespace
 
 TEST(TrueRobot, DefaultTrueErrorIsAboutFifteenMillimetresAndTwoDegrees) {
-  const auto nominal = loadRobotDescription("config/friend/robot.yaml");
-  const auto truth = applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml", nominal));
+  const auto nominal = loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml"));
+  const auto truth = applyTrueError(nominal, loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), nominal));
   const double dt = (truth.head.mount.translation() - nominal.head.mount.translation()).norm();
   const double dr = angleBetween(truth.head.mount.linear(), nominal.head.mount.linear());
   EXPECT_NEAR(dt, 0.015, 0.001);
@@ -38,9 +39,9 @@ TEST(TrueRobot, DefaultTrueErrorIsAboutFifteenMillimetresAndTwoDegrees) {
 }
 
 TEST(TrueRobot, SeededErrorsAreRepeatableAndOfTheGivenSize) {
-  const auto a = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5);
-  const auto b = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5);
-  const auto c = loadTrueError("config/friend/true_error.yaml", friendRobot(), 6);
+  const auto a = loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), friendRobot(), 5);
+  const auto b = loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), friendRobot(), 5);
+  const auto c = loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), friendRobot(), 6);
   EXPECT_TRUE(a.head_mount_xyz.isApprox(b.head_mount_xyz));
   EXPECT_FALSE(a.head_mount_xyz.isApprox(c.head_mount_xyz));
   EXPECT_NEAR(a.head_mount_xyz.norm(), 0.015, 1e-12);
@@ -52,12 +53,12 @@ TEST(TrueRobot, SeededErrorsAreRepeatableAndOfTheGivenSize) {
 // A random error has one zero offset per joint of the robot it is drawn for, and the same seed
 // gives the same mount and marker error whatever the number of joints.
 TEST(TrueRobot, RandomJointOffsetsFollowTheRobotsJoints) {
-  const auto six_axis = loadRobotDescription("config/six_axis/robot.yaml");
+  const auto six_axis = loadRobotDescription(imagenets::packageFile("robot_description", "config/six_axis/robot.yaml"));
   ASSERT_EQ(six_axis.arm.joints.size(), 6u);
-  const auto a = loadTrueError("config/six_axis/true_error.yaml", six_axis, 5);
+  const auto a = loadTrueError(imagenets::packageFile("friend_hw_sim", "config/six_axis_true_error.yaml"), six_axis, 5);
   EXPECT_EQ(a.arm_joint_offsets.size(), 6u);
   EXPECT_EQ(a.head_joint_offsets.size(), 2u);
-  const auto f = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5);
+  const auto f = loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), friendRobot(), 5);
   EXPECT_EQ(f.arm_joint_offsets.size(), 7u);
   EXPECT_TRUE(a.head_mount_xyz.normalized().isApprox(f.head_mount_xyz.normalized()));
   // The true robot of that seed is built (applyTrueError checks the counts).
@@ -66,13 +67,13 @@ TEST(TrueRobot, RandomJointOffsetsFollowTheRobotsJoints) {
 }
 
 TEST(TrueRobot, MagnitudeScalesTheRandomErrorAndMustBePositive) {
-  const auto a = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5);
-  const auto k = loadTrueError("config/friend/true_error.yaml", friendRobot(), 5, 3.0);
+  const auto a = loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), friendRobot(), 5);
+  const auto k = loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), friendRobot(), 5, 3.0);
   EXPECT_TRUE(k.head_mount_xyz.isApprox(3.0 * a.head_mount_xyz));  // same direction, three times as far
   EXPECT_NEAR(k.head_mount_rpy.norm(), 6.0 * kDeg, 1e-12);
   EXPECT_NEAR(k.arm_joint_offsets[2], 3.0 * a.arm_joint_offsets[2], 1e-15);
   try {
-    loadTrueError("config/friend/true_error.yaml", friendRobot(), 5, -1.0);
+    loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), friendRobot(), 5, -1.0);
     FAIL() << "a negative magnitude was accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("true_error.yaml: true_error: the magnitude factor"), std::string::npos)
@@ -84,7 +85,7 @@ TEST(TrueRobot, IdentifiableHeadBaseSeesTheArmAsTheNominalModelDoes) {
   // Arm joint 1 and pan zero offsets only: seen from the identifiable head mount, the NOMINAL
   // model's marker sits where the TRUE marker sits seen from the effective (pan-folded) mount, in
   // every arm pose; so no image of the marker can tell the two apart.
-  const auto nominal = loadRobotDescription("config/friend/robot.yaml");
+  const auto nominal = loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml"));
   TrueRobotError e;
   e.arm_joint_offsets = {0.3 * kDeg, 0, 0, 0, 0, 0, 0};
   e.head_joint_offsets = {0.2 * kDeg, 0};

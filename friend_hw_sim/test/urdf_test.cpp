@@ -9,6 +9,7 @@
 #include "robot_description/robot_model.h"
 #include "friend_hw_sim/true_robot.h"
 #include "robot_description/urdf_generator.h"
+#include "imagenets/package_file.h"
 
 using namespace friend_hw_sim;
 using namespace robot_description;
@@ -76,10 +77,10 @@ void checkAgreement(const RobotDescription& d) {
 
 }  // namespace
 
-TEST(Urdf, NominalRobotAgreesWithDhKinematics) { checkAgreement(loadRobotDescription("config/friend/robot.yaml")); }
+TEST(Urdf, NominalRobotAgreesWithDhKinematics) { checkAgreement(loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml"))); }
 
 TEST(Urdf, TrueRobotAgreesWithItsDhKinematics) {
-  const auto nominal = loadRobotDescription("config/friend/robot.yaml");
-  checkAgreement(applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml", nominal)));
-  checkAgreement(applyTrueError(nominal, loadTrueError("config/friend/true_error.yaml", nominal, 42)));
+  const auto nominal = loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml"));
+  checkAgreement(applyTrueError(nominal, loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), nominal)));
+  checkAgreement(applyTrueError(nominal, loadTrueError(imagenets::packageFile("friend_hw_sim", "config/true_error.yaml"), nominal, 42)));
 }

@@ -12,7 +12,8 @@ namespace blocks {
 const robot_description::RobotDescription& robotDescription(const std::string& path) {
   static std::mutex mutex;
   static std::map<std::string, robot_description::RobotDescription> cache;
-  const std::string file = path.empty() ? robot_description::defaultRobotDescriptionPath() : path;
+  if (path.empty()) throw BlockError("property 'description' is empty: set it to the robot's description YAML");
+  const std::string& file = path;
   std::lock_guard<std::mutex> lock(mutex);
   auto it = cache.find(file);
   if (it == cache.end()) {

@@ -22,7 +22,7 @@ class DhForwardKinematics : public Block {
     addProperty<std::string>("chain", "table",
                              "the kinematic chain: the description's `arm` or `head`, or the property `dh_table`")
         .choices({"table", "arm", "head"});
-    addProperty<std::string>("description", "", "robot description YAML (empty: config/friend/robot.yaml)").path();
+    addProperty<std::string>("description", "", "robot description YAML (required)").path();
     addProperty<std::string>("tip", "last_link",
                              "end of the chain: its last link, or a frame of the description (tcp, marker, "
                              "hand_camera on the arm; left_camera, right_camera on the head)")

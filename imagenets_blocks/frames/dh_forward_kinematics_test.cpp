@@ -26,6 +26,7 @@ sensor_msgs::JointState::Ptr joints(std::vector<std::string> names, std::vector<
 
 TEST(DhForwardKinematics, AnthropomorphicArmByJointName) {
   BlockHarness h("imagenets/DhForwardKinematics");
+  h.set("description", robot_description::exampleRobotDescriptionPath());
   h.set("dh_table", kArm).set("joint_names", "j1, j2, j3").set("base_frame", "arm_base").set("tip_frame", "tcp");
   const double q1 = 0.7, q2 = -0.4, q3 = 1.2;
   // Joint states arrive in any order, with extra joints.
@@ -48,6 +49,7 @@ TEST(DhForwardKinematics, AnthropomorphicArmByJointName) {
 
 TEST(DhForwardKinematics, ToolOffsetAlongLastLinkX) {
   BlockHarness h("imagenets/DhForwardKinematics");
+  h.set("description", robot_description::exampleRobotDescriptionPath());
   // One joint, link 1 m along x; tool 0.1 m further along the link's x: at q = 90 deg the tip is at (0, 1.1, 0).
   h.set("dh_table", std::vector<double>{0, 0, 1, 0}).set("tool_offset", std::vector<double>{0.1, 0, 0, 0, 0, 0});
   h.input("joints", joints({}, {M_PI / 2}));
@@ -59,6 +61,7 @@ TEST(DhForwardKinematics, ToolOffsetAlongLastLinkX) {
 
 TEST(DhForwardKinematics, BadInputsAreNamedErrors) {
   BlockHarness h("imagenets/DhForwardKinematics");
+  h.set("description", robot_description::exampleRobotDescriptionPath());
   h.input("joints", joints({}, {0.1, 0.2, 0.3}));
   EXPECT_NE(h.runError().find("property 'dh_table': a DH table needs 4 values per joint"), std::string::npos)
       << h.runError();
@@ -77,10 +80,11 @@ TEST(DhForwardKinematics, BadInputsAreNamedErrors) {
 
 TEST(DhForwardKinematics, ReadsTheChainsFromTheRobotDescription) {
   // The description's arm to the marker and head to the left camera equal the robot model's.
-  const auto d = robot_description::loadRobotDescription("config/friend/robot.yaml");
+  const auto d = robot_description::loadRobotDescription(robot_description::exampleRobotDescriptionPath());
   const robot_description::RobotModel model(d);
   BlockHarness arm("imagenets/DhForwardKinematics");
-  arm.set("chain", std::string("arm")).set("description", std::string("config/friend/robot.yaml"))
+  arm.set("description", robot_description::exampleRobotDescriptionPath());
+  arm.set("chain", std::string("arm")).set("description", std::string(robot_description::exampleRobotDescriptionPath()))
       .set("tip", std::string("marker"));
   // Joint states by name, in reverse order: the description's names pick them.
   std::vector<std::string> names = d.arm.names();
@@ -97,6 +101,8 @@ TEST(DhForwardKinematics, ReadsTheChainsFromTheRobotDescription) {
   EXPECT_NEAR(marker->transform.translation.z, expected.z(), 1e-12);
 
   BlockHarness head("imagenets/DhForwardKinematics");
+
+  head.set("description", robot_description::exampleRobotDescriptionPath());
   head.set("chain", std::string("head")).set("tip", std::string("right_camera")).set("from", std::string("link_0"));
   head.input("joints", joints(d.head.names(), d.head_calibration_pose));
   head.run();

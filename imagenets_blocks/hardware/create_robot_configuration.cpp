@@ -18,7 +18,7 @@ class CreateRobotConfiguration : public Block {
                                      "joint angles in degrees, in the group's joint order (the paper's \"Angles\")");
     addProperty<std::string>("group", "arm", "joint group: the arm (7 joints) or the pan-tilt head (pan, tilt)")
         .choices({"arm", "head"});
-    addProperty<std::string>("description", "", "robot description YAML (empty: config/friend/robot.yaml)").path();
+    addProperty<std::string>("description", "", "robot description YAML (required)").path();
   }
 
   void process(Context& ctx) override {

@@ -4,11 +4,13 @@
 #include <sensor_msgs/JointState.h>
 
 #include "imagenets/blocks/block_harness.h"
+#include "robot_description/robot_model.h"
 
 using imagenets::blocks::BlockHarness;
 
 TEST(CreateRobotConfiguration, AnglesInDegreesBecomeRadiansWithJointNames) {
   BlockHarness h("imagenets/CreateRobotConfiguration");
+  h.set("description", robot_description::exampleRobotDescriptionPath());
   h.set("angles", std::vector<double>{10, 20, 30, 40, 50, 60, 70}).run();
   const auto js = h.output<sensor_msgs::JointState>("configuration");
   ASSERT_TRUE(js);
@@ -19,6 +21,7 @@ TEST(CreateRobotConfiguration, AnglesInDegreesBecomeRadiansWithJointNames) {
 
 TEST(CreateRobotConfiguration, HeadGroupHasPanAndTilt) {
   BlockHarness h("imagenets/CreateRobotConfiguration");
+  h.set("description", robot_description::exampleRobotDescriptionPath());
   h.set("group", std::string("head")).set("angles", std::vector<double>{-10, 30}).run();
   EXPECT_EQ(h.output<sensor_msgs::JointState>("configuration")->name,
             (std::vector<std::string>{"head_pan_joint", "head_tilt_joint"}));
@@ -26,6 +29,7 @@ TEST(CreateRobotConfiguration, HeadGroupHasPanAndTilt) {
 
 TEST(CreateRobotConfiguration, OutOfLimitOrWrongCountIsAClearError) {
   BlockHarness h("imagenets/CreateRobotConfiguration");
+  h.set("description", robot_description::exampleRobotDescriptionPath());
   h.set("angles", std::vector<double>{0, 0, 0, 150, 0, 0, 0});
   const std::string error = h.runError();
   EXPECT_NE(error.find("property 'angles'"), std::string::npos) << error;

@@ -11,7 +11,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "imagenets/register_block.h"
-#include "ros_access.h"
+#include "imagenets/blocks/ros_access.h"
 
 namespace imagenets {
 namespace blocks {

@@ -21,7 +21,7 @@ class LookAtTcp : public Block {
     addOutput<sensor_msgs::JointState>("head_configuration", "pan and tilt (rad) that centre the target");
     addOutput<geometry_msgs::TransformStamped>("target", "the looked-at point (TCP + offset) in the robot base frame");
     addProperty<std::vector<double>>("offset", {0.0, 0.0, 0.0}, "point to look at, in the TCP frame (m)");
-    addProperty<std::string>("description", "", "robot description YAML (empty: config/friend/robot.yaml)").path();
+    addProperty<std::string>("description", "", "robot description YAML (required)").path();
   }
 
   void process(Context& ctx) override {

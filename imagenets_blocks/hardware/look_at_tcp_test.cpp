@@ -11,7 +11,8 @@ using imagenets::blocks::BlockHarness;
 
 TEST(LookAtTcp, CentresTheTcpOnTheStereoAxisOfTheNominalRobot) {
   BlockHarness h("imagenets/LookAtTcp");
-  const auto d = robot_description::loadRobotDescription("config/friend/robot.yaml");
+  h.set("description", robot_description::exampleRobotDescriptionPath());
+  const auto d = robot_description::loadRobotDescription(robot_description::exampleRobotDescriptionPath());
   auto arm = boost::make_shared<sensor_msgs::JointState>();
   arm->name = d.arm.names();
   arm->position = {-0.5, 1.0, 1.2, 1.3, -0.3, 1.2, 0.0};
@@ -29,6 +30,7 @@ TEST(LookAtTcp, CentresTheTcpOnTheStereoAxisOfTheNominalRobot) {
 
 TEST(LookAtTcp, MissingArmJointIsNamed) {
   BlockHarness h("imagenets/LookAtTcp");
+  h.set("description", robot_description::exampleRobotDescriptionPath());
   auto arm = boost::make_shared<sensor_msgs::JointState>();
   arm->name = {"arm_joint_1"};
   arm->position = {0.0};

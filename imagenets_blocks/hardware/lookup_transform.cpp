@@ -1,5 +1,5 @@
 // Paper 4.3 / Fig. 4.4: the current extrinsic matrix of a camera is a TF lookup. The head's chain
-// hangs from the calibrated PTH fixed point (published by friend_calibration), so
+// hangs from the calibrated PTH fixed point (published by the calibration node), so
 // base_link -> calibrated/stereo_left_optical_frame at the image's stamp is the left camera's
 // extrinsics at whatever pan/tilt the head had when the image was taken.
 #include <geometry_msgs/TransformStamped.h>
@@ -7,7 +7,7 @@
 #include <tf2_ros/buffer.h>
 
 #include "imagenets/register_block.h"
-#include "ros_access.h"
+#include "imagenets/blocks/ros_access.h"
 
 namespace imagenets {
 namespace blocks {

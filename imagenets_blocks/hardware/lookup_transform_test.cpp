@@ -2,7 +2,7 @@
 #include <tf2_ros/buffer.h>
 
 #include "imagenets/blocks/block_harness.h"
-#include "ros_access.h"
+#include "imagenets/blocks/ros_access.h"
 
 using imagenets::BlockError;
 using imagenets::blocks::BlockHarness;

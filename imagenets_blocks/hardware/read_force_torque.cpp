@@ -3,7 +3,7 @@
 #include <sensor_msgs/JointState.h>
 
 #include "imagenets/register_block.h"
-#include "ros_access.h"
+#include "imagenets/blocks/ros_access.h"
 
 namespace imagenets {
 namespace blocks {

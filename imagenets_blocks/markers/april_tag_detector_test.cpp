@@ -15,7 +15,7 @@ using namespace imagenets;
 TEST(AprilTagDetectorBlock, FindsTheRenderedTagInANet) {
   const std::string yaml = R"(
 blocks:
-  camera: {type: imagenets/CameraInfoFile, properties: {path: config/cameras/friend_stereo_left.yaml}}
+  camera: {type: imagenets/CameraInfoFile, properties: {path: $(find imagenets_vision)/config/cameras/stereo_left.yaml}}
   render: {type: imagenets/MarkerRenderer, properties: {marker: "", apriltag_id: 7, pan: 120, tilt: 40, supersampling: 2}}
   tag: {type: imagenets/AprilTagDetector, properties: {id: 7, size: 0.06}}
 links:

@@ -27,7 +27,7 @@ std::unique_ptr<Executor> detectorOnly() {
 blocks:
   detector:
     type: imagenets/SquareMarkerDetector
-    properties: {marker: config/markers/gripper.yaml}
+    properties: {marker: $(find imagenets_vision)/config/markers/gripper.yaml}
 )";
   return std::make_unique<Executor>(Net::build(parseNetText(yaml, "test", ".")), ExecutorOptions{1});
 }
@@ -141,7 +141,7 @@ TEST(SquareMarkerDetectorBlock, ABadBlurOfTheBlurredMatchIsALoadErrorNamingIt) {
 blocks:
   detector:
     type: imagenets/SquareMarkerDetector
-    properties: {marker: config/markers/gripper.yaml, match_blur_px: [1, -2]}
+    properties: {marker: $(find imagenets_vision)/config/markers/gripper.yaml, match_blur_px: [1, -2]}
 )";
   try {
     Net::build(parseNetText(yaml, "test.yaml", "."));

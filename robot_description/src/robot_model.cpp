@@ -263,13 +263,10 @@ RobotDescription loadRobotDescription(const std::string& path) {
   return d;
 }
 
-std::string defaultRobotDescriptionPath() {
-  // The installed/sourced package first; else the source tree this library was built from.
-  const std::string pkg = ros::package::getPath("imagenets");
-  if (!pkg.empty() && boost::filesystem::exists(pkg + "/config/friend/robot.yaml")) {
-    return pkg + "/config/friend/robot.yaml";
-  }
-  return std::string(ROBOT_DESCRIPTION_SOURCE_DIR) + "/config/friend/robot.yaml";
+std::string exampleRobotDescriptionPath() {
+  const std::string pkg = ros::package::getPath("robot_description");
+  if (pkg.empty()) throw std::runtime_error("package robot_description not found (ROS_PACKAGE_PATH)");
+  return pkg + "/config/example/robot.yaml";
 }
 
 Eigen::Isometry3d RobotModel::tcp(const std::vector<double>& q) const { return d_.arm.end(q) * d_.tool.pose; }

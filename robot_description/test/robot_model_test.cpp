@@ -27,7 +27,7 @@ std::string writeTemp(const std::string& text) {
 }  // namespace
 
 TEST(RobotModel, LoadsTheShippedDescription) {
-  const auto d = loadRobotDescription("config/friend/robot.yaml");
+  const auto d = loadRobotDescription("config/example/robot.yaml");
   EXPECT_EQ(d.arm.joints.size(), 7u);
   EXPECT_EQ(d.head.joints.size(), 2u);
   EXPECT_DOUBLE_EQ(d.marker_size, 0.06);
@@ -36,7 +36,7 @@ TEST(RobotModel, LoadsTheShippedDescription) {
   // Its DH row as a chain joint: axis z, tip Tz(d) Rx(alpha).
   EXPECT_TRUE(d.arm.joints[0].axis.isApprox(Eigen::Vector3d::UnitZ()));
   EXPECT_TRUE(d.arm.joints[0].tip.isApprox(Eigen::Translation3d(0, 0, 0.3) * Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX())));
-  EXPECT_NE(d.left_camera_info.find("config/cameras/friend_stereo_left.yaml"), std::string::npos);
+  EXPECT_NE(d.left_camera_info.find("config/example/stereo_left.yaml"), std::string::npos);
 }
 
 TEST(RobotModel, DhTransformFollowsTheClassicConvention) {
@@ -64,7 +64,7 @@ TEST(RobotModel, RpyRoundTripIncludingGimbalLock) {
 }
 
 TEST(RobotModel, LimitViolationNamesTheJoint) {
-  const auto d = loadRobotDescription("config/friend/robot.yaml");
+  const auto d = loadRobotDescription("config/example/robot.yaml");
   std::vector<double> q(7, 0.0);
   EXPECT_EQ(d.arm.limitViolation(q), "");
   q[3] = 2.5;  // joint 4 is limited to +-115 deg
@@ -89,7 +89,7 @@ TEST(RobotModel, BadDescriptionsAreReportedWithFileAndKey) {
 }
 
 TEST(RobotModel, LookAtCentresTheTargetBetweenTheStereoCameras) {
-  const RobotModel m(loadRobotDescription("config/friend/robot.yaml"));
+  const RobotModel m(loadRobotDescription("config/example/robot.yaml"));
   const Eigen::Vector3d target = m.tcp(m.description().arm_calibration_pose).translation();
   const auto pt = m.lookAt(target);
   Eigen::Isometry3d centre = m.leftCamera({pt[0], pt[1]});
@@ -100,7 +100,7 @@ TEST(RobotModel, LookAtCentresTheTargetBetweenTheStereoCameras) {
 }
 
 TEST(RobotModel, CalibrationPoseShowsTheMarkerToBothCameras) {
-  const RobotModel m(loadRobotDescription("config/friend/robot.yaml"));
+  const RobotModel m(loadRobotDescription("config/example/robot.yaml"));
   const auto& d = m.description();
   const Eigen::Isometry3d marker = m.marker(d.arm_calibration_pose);
   for (const Eigen::Isometry3d& cam : {m.leftCamera(d.head_calibration_pose), m.rightCamera(d.head_calibration_pose)}) {

@@ -84,12 +84,12 @@ void checkRoundTrip(const RobotDescription& dh) {
 }  // namespace
 
 TEST(UrdfKinematics, FriendsUrdfFromItsDhFileGivesTheDhKinematics) {
-  checkRoundTrip(loadRobotDescription("config/friend/robot.yaml"));
+  checkRoundTrip(loadRobotDescription("config/example/robot.yaml"));
 }
 
 TEST(UrdfKinematics, ZeroOffsetsAndAnotherMountSurviveTheRoundTrip) {
   // As a calibrated or a simulated true robot has them: offsets on every joint, the head moved.
-  RobotDescription d = loadRobotDescription("config/friend/robot.yaml");
+  RobotDescription d = loadRobotDescription("config/example/robot.yaml");
   for (size_t i = 0; i < d.arm.joints.size(); ++i) d.arm.joints[i].offset += 0.01 * (i + 1) - 0.03;
   for (auto& j : d.head.joints) j.offset -= 0.02;
   d.head.mount = fromXyzRpy({-0.04, 0.015, 1.36}, {0.02, -0.03, 0.05});
@@ -163,7 +163,7 @@ TEST(UrdfKinematics, WhatDoesNotFitIsNamed) {
             std::string::npos);
   EXPECT_NE(messageOf([] { UrdfKinematics::fromFile("/nonexistent/robot.urdf"); }).find("'/nonexistent/robot.urdf': cannot read"),
             std::string::npos);
-  const RobotDescription d = loadRobotDescription("config/friend/robot.yaml");
+  const RobotDescription d = loadRobotDescription("config/example/robot.yaml");
   const UrdfKinematics urdf(generateUrdf(d), "friend.urdf");
   EXPECT_EQ(urdf.rootLink(), "base_link");
   EXPECT_NE(messageOf([&] { urdf.chain("base_link", "no_such_link"); }).find("friend.urdf: the URDF has no link 'no_such_link'"),

@@ -76,7 +76,7 @@ TEST(UrdfWriter, UnchangedKinematicsLeaveEveryJointAsWritten) {
 }
 
 TEST(UrdfWriter, ADescriptionOfDhTablesGetsTheGeneratedUrdf) {
-  const auto nominal = loadRobotDescription("config/friend/robot.yaml");
+  const auto nominal = loadRobotDescription("config/example/robot.yaml");
   EXPECT_EQ(urdfFileOf(nominal), "");
   const RobotDescription changed = changedFrom(nominal);
   EXPECT_EQ(writeUrdf(nominal, changed, "friend", "note"), generateUrdf(changed, "friend", "note"));

@@ -3,14 +3,14 @@
 // frames) on ~ground_truth/... for tests and studies only.
 //
 // Topics/services/actions (relative to the node's namespace, like real drivers):
-//   arm/move_joints, head/move_joints     imagenets/MoveJoints actions
+//   arm/move_joints, head/move_joints     friend_msgs/MoveJoints actions
 //   joint_states                          sensor_msgs/JointState (arm + head, encoder readings)
 //   ft_sensor/wrench                      geometry_msgs/WrenchStamped
-//   world_model/set, world_model/get      imagenets/WorldModelSet, WorldModelGet
+//   world_model/set, world_model/get      friend_msgs/WorldModelSet, WorldModelGet
 //   ~ground_truth/{tcp,marker,left_camera,right_camera,head_base,hand_camera}
 //                                         geometry_msgs/TransformStamped (base -> frame, true robot)
 //   ~ground_truth/joint_states            exact joint angles (no encoder noise)
-//   ~set_true_robot                       imagenets/SetTrueRobot: another true robot, live (studies)
+//   ~set_true_robot                       friend_msgs/SetTrueRobot: another true robot, live (studies)
 // Parameters (private): description, true_error, seed, magnitude (factor on the random error's
 //   magnitudes; ~seed and ~magnitude are rewritten by ~set_true_robot), time_scale (live), joint_state_rate,
 //   encoder_noise (rad), faults/arm_abort_probability, faults/head_abort_probability,
@@ -28,9 +28,9 @@
 
 #include "friend_hw_sim/joint_group_server.h"
 #include "robot_description/robot_model.h"
-#include "imagenets/SetTrueRobot.h"
-#include "imagenets/WorldModelGet.h"
-#include "imagenets/WorldModelSet.h"
+#include "friend_msgs/SetTrueRobot.h"
+#include "friend_msgs/WorldModelGet.h"
+#include "friend_msgs/WorldModelSet.h"
 
 namespace friend_hw_sim {
 
@@ -56,9 +56,9 @@ class FriendSim {
 
  private:
   void tick(const ros::TimerEvent& e);
-  bool setObject(imagenets::WorldModelSet::Request& req, imagenets::WorldModelSet::Response& res);
-  bool getObject(imagenets::WorldModelGet::Request& req, imagenets::WorldModelGet::Response& res);
-  bool setTrueRobot(imagenets::SetTrueRobot::Request& req, imagenets::SetTrueRobot::Response& res);
+  bool setObject(friend_msgs::WorldModelSet::Request& req, friend_msgs::WorldModelSet::Response& res);
+  bool getObject(friend_msgs::WorldModelGet::Request& req, friend_msgs::WorldModelGet::Response& res);
+  bool setTrueRobot(friend_msgs::SetTrueRobot::Request& req, friend_msgs::SetTrueRobot::Response& res);
   void publishGroundTruth(const RobotState& s);
   void publishWrench(const RobotState& s);
 
@@ -77,7 +77,7 @@ class FriendSim {
   ros::Time last_tick_;
   mutable std::mutex mutex_;
   std::mt19937 rng_;
-  std::map<std::string, imagenets::WorldModelSet::Request> world_;
+  std::map<std::string, friend_msgs::WorldModelSet::Request> world_;
   std::unique_ptr<CameraSim> cameras_;
 };
 

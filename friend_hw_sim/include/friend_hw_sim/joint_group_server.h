@@ -1,5 +1,5 @@
 // The simulated motor controller of one joint group (the arm, or the pan-tilt head): an actionlib
-// server for imagenets/MoveJoints that moves the group along a velocity-limited trajectory in
+// server for friend_msgs/MoveJoints that moves the group along a velocity-limited trajectory in
 // simulated time. Goals outside the joint limits are rejected with a reason; a new goal preempts
 // the running one; cancel stops where the group is; with a fault probability a goal is aborted
 // part way, like a real controller that trips.
@@ -16,13 +16,13 @@
 
 #include "friend_hw_sim/joint_trajectory.h"
 #include "robot_description/robot_model.h"
-#include "imagenets/MoveJointsAction.h"
+#include "friend_msgs/MoveJointsAction.h"
 
 namespace friend_hw_sim {
 
 class JointGroupServer {
  public:
-  using Server = actionlib::ActionServer<imagenets::MoveJointsAction>;
+  using Server = actionlib::ActionServer<friend_msgs::MoveJointsAction>;
   using GoalHandle = Server::GoalHandle;
 
   // `action_name` is resolved in nh; `fault_param` is a parameter (read live) holding the
@@ -41,7 +41,7 @@ class JointGroupServer {
  private:
   void onGoal(GoalHandle gh);
   void onCancel(GoalHandle gh);
-  imagenets::MoveJointsResult resultLocked(const std::string& message) const;
+  friend_msgs::MoveJointsResult resultLocked(const std::string& message) const;
 
   ros::NodeHandle nh_;
   std::string action_name_;

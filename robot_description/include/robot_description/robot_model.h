@@ -127,9 +127,9 @@ struct RobotDescription {
 
 // Loads the description; throws std::runtime_error naming the file and the key on bad input.
 RobotDescription loadRobotDescription(const std::string& path);
-// The default description shipped with the package (config/friend/robot.yaml), found via
-// rospack when available, else relative to the source tree.
-std::string defaultRobotDescriptionPath();
+// The example robot shipped with this package (config/example/robot.yaml: a 7-joint arm, a
+// pan-tilt stereo head), found with ros::package::getPath; for tests and docs.
+std::string exampleRobotDescriptionPath();
 
 // Forward kinematics of a description. Arm joint vector: 7 angles; head: pan, tilt.
 class RobotModel {

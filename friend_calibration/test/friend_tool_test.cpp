@@ -1,0 +1,120 @@
+// The FRIEND calibration's commands (imagenets-NAME programs) through the `imagenets` tool, run as
+// a user runs them, in this package's folder.
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <boost/filesystem.hpp>
+#include <gtest/gtest.h>
+
+namespace {
+
+struct Result {
+  int status;
+  std::string output;
+};
+
+// Runs `imagenets ARGS` in a shell, in this package's folder; returns exit status and stdout+stderr
+// (only stdout with stdout_only).
+Result tool(const std::string& args, bool stdout_only = false) {
+  const std::string cmd = std::string(IMAGENETS_TOOL) + " " + args + (stdout_only ? " 2>/dev/null" : " 2>&1");
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+  int status = pclose(pipe);
+  return {WEXITSTATUS(status), out};
+}
+
+void expectContains(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "missing \"" << part << "\" in:\n" << text;
+}
+
+std::string temp(const std::string& name) {
+  auto dir = boost::filesystem::temp_directory_path() / ("imagenets_tool_test_" + std::to_string(getpid()));
+  boost::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+}  // namespace
+
+// --set-all gives every block of the net and its sub-nets that has the property one value: here the
+// robot description, so `run` replays the stored samples of a six-axis robot's calibration
+// (test/six_axis_calibration.yaml, written by the calibration node on robot_description's six_axis in
+// the simulator) with that robot's kinematics, and finds the stored fixed point again.
+TEST(Tool, RunSetAllGivesEveryBlockOfTheNetTreeTheRobotDescription) {
+  const std::string dir = temp("six_axis_replay");
+  const std::string replay = "run config/nets/calibration.yaml --set samples.net=$(rospack find imagenets_calibration)/config/nets/calibration_sample_replay.yaml "
+                             "--set plan.replay=" +
+                             boost::filesystem::absolute("test/six_axis_calibration.yaml").string() +
+                             " --set plan.method=joint ";
+  Result r = tool(replay + "--set-all description=$(rospack find robot_description)/config/six_axis/robot.yaml --output-dir " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "--set-all description: plan samples/until/solve solve");
+  std::ifstream in(dir + "/fixed_point.value.yaml");
+  std::stringstream fixed;
+  fixed << in.rdbuf();
+  expectContains(fixed.str(), "x: -0.08977030358");  // the stored fixed_point: [-0.089770303580141764, ...
+  expectContains(fixed.str(), "z: 1.28800168702");
+  // Without it the blocks compute with the net's robot (FRIEND's 7-joint arm).
+  r = tool(replay);
+  EXPECT_EQ(r.status, 1);
+  expectContains(r.output, "expected 7 joint angles, got 6");
+}
+
+TEST(Tool, StudyCommandsCheckTheirArgumentsFirst) {
+  Result r = tool("repeatability --redundancy 1,x");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--redundancy '1,x': 'x' is not a count");
+  // Checked before anything connects to ROS.
+  r = tool("repeatability --real-speed-runs -1");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--real-speed-runs must be >= 0");
+  expectContains(r.output, "usage: imagenets repeatability");
+  r = tool("accuracy-study --magnitude 0");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--magnitude must be positive");
+  expectContains(r.output, "usage: imagenets accuracy-study");
+  r = tool("accuracy-study --reflections 150");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--reflections is a percentage 0..100");
+  r = tool("accuracy-study --pose-sweep 1,x");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--pose-sweep '1,x': 'x' is not a count");
+  r = tool("accuracy-study --loops 4");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--loops must be odd and >= 1, not 4");
+  r = tool("accuracy-study --first-seed 0");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--first-seed must be >= 1");
+}
+
+TEST(Tool, CalibrationPlanNamesWhatItsPosesLeaveUnobservable) {
+  // One loop of the joint method (2 poses): one relative motion, so the marker's rotation about
+  // its axis and with it the fixed point are left to the priors.
+  Result r = tool("calibration-plan --description $(rospack find friend_description)/config/robot.yaml --poses 2", true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "calibration plan: method joint, 2 poses");
+  expectContains(r.output, "not observable from these poses (posterior std > 0.5 x prior): fixed point x");
+  expectContains(r.output, "marker offset rz");
+  // The default plan (5 loops x 2 poses) determines every estimated parameter.
+  r = tool("calibration-plan --description $(rospack find friend_description)/config/robot.yaml --list", true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "method joint, 10 poses");
+  expectContains(r.output, "pose  9: arm [");
+  expectContains(r.output, "every estimated parameter observable");
+  r = tool("calibration-plan --description $(rospack find friend_description)/config/robot.yaml --noise 0");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--noise must be positive");
+}
+
+TEST(Tool, HelpListsThePackagesCommands) {
+  const Result r = tool("--help", true);
+  EXPECT_EQ(r.status, 0);
+  for (const char* known : {"calibrate", "repeatability", "accuracy-study", "calibration-plan"}) {
+    expectContains(r.output, std::string("  ") + known + " ");
+  }
+}

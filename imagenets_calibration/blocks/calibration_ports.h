@@ -1,0 +1,24 @@
+// What the FRIEND calibration blocks share: the robot model named by a `description` property
+// (loaded once per file) and the sample of repetition k, with errors naming property or port.
+#pragma once
+
+#include <string>
+
+#include <imagenets_calibration_msgs/CalibrationPlan.h>
+#include <std_msgs/Int32.h>
+
+#include "imagenets_calibration/calibration.h"
+#include "imagenets/block.h"
+
+namespace imagenets_calibration {
+namespace blocks {
+
+// The nominal model of the description file in `path` (required).
+const RobotModel& robotModel(const std::string& path);
+
+// The index this run works on: the input `repetition` (a repeated sub-net's index) when it has a
+// value, else the property `index`; checked against the plan's sample count.
+int sampleIndex(const imagenets::Context& ctx, const imagenets_calibration_msgs::CalibrationPlan& plan);
+
+}  // namespace blocks
+}  // namespace imagenets_calibration

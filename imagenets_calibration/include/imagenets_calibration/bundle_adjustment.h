@@ -1,0 +1,88 @@
+// The joint calibration fitted at pixel level: a bundle adjustment (Ceres Solver) over the fixed
+// point, the marker offset and the identifiable joint zero offsets, whose residuals are the
+// marker's 8 defined points projected through the arm, the head chain and the stereo camera
+// models (with their distortion) minus the detected points, in both images, under a robust
+// (Huber) loss. Its covariance at the solution is the result's uncertainty. Plain Eigen types
+// here: Ceres stays inside bundle_adjustment.cpp.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "imagenets_calibration/calibration.h"
+#include "imagenets_calibration/observability.h"
+
+namespace imagenets_calibration {
+
+// A pinhole camera with OpenCV distortion: plumb_bob (k1 k2 p1 p2 k3) or rational_polynomial
+// (k1 k2 p1 p2 k3 k4 k5 k6); fewer coefficients = the rest zero.
+struct PinholeCamera {
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+  std::vector<double> distortion;
+  // Distorted pixel of a point in the camera frame (z > 0).
+  Eigen::Vector2d project(const Eigen::Vector3d& p) const;
+};
+struct StereoCameras {
+  PinholeCamera left, right;
+};
+// The stereo camera models of the robot description (its camera_info files); nullopt with the
+// reason in `why` when a file cannot be read.
+std::optional<StereoCameras> stereoCamerasOf(const robot_description::RobotDescription& description, std::string* why);
+
+// The marker's 8 defined points in its frame (outer then inner border corners, the detector's
+// order, imagenets/vision/marker.h) for a marker of `size` with the border `border` * size wide.
+std::vector<Eigen::Vector3d> markerDefinedPoints(double size, double border = 0.25);
+
+struct BundleAdjustmentOptions {
+  // Huber loss: residuals beyond this many noise sigmas count linearly (a disturbed corner).
+  double huber_sigmas = 3.0;
+  // A detection whose 8 points do not fit its own pose within this (RMS px through the camera
+  // model) was made with another camera model or carries no real points: it is not used.
+  double max_point_mismatch = 1.0;
+  int max_iterations = 100;
+  // px: the point noise; 0 = estimated from the residuals (a robust sigma).
+  double noise_sigma = 0.0;
+};
+
+struct BundleAdjustment {
+  bool ok = false;
+  std::string message;  // what was fitted, or why not
+  Eigen::Isometry3d fixed_point = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d marker_offset = Eigen::Isometry3d::Identity();
+  std::vector<double> arm_joint_offsets, head_joint_offsets;  // full length, rad
+  // Covariances at the solution, scaled by the residual variance. Fixed point and marker offset:
+  // (translation m, rotation vector rad), perturbed on the left: X = (exp(w) R, t + dt) in the
+  // parent frame (base, TCP). Joint offsets: standard deviations, full length (0 = not estimated).
+  Eigen::Matrix<double, 6, 6> fixed_point_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 6> marker_offset_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  std::vector<double> arm_joint_offset_std, head_joint_offset_std;
+  // The images determine the fixed point: its 3-sigma translation bound is below the marker
+  // offset's prior sigma. Not so with one relative motion (a single joint loop: the marker
+  // offset's rotation about the motion's axis is free, 3 sigma ~0.5 m); the priors decide then.
+  bool determined = false;
+  double noise_sigma = 0.0;      // px, robust estimate of the point noise from the residuals
+  double reprojection_rms = 0.0; // px, over the used points
+  int observations = 0;          // detections used (left and right count separately)
+  // Which parameters these detections determine, and the posterior covariance of all of them
+  // (parameter order: fixed point, marker offset, arm offsets, head offsets as estimated).
+  Observability observability;
+};
+
+// Starts from `start` (the joint method's solution: fixed point, marker offset, joint offsets) and
+// fits the samples given (the joint method's used ones); a detection is used when `usable` says so
+// and its points fit its pose (options.max_point_mismatch).
+BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& cameras,
+                              const std::vector<Eigen::Vector3d>& marker_points, const std::vector<const Sample*>& samples,
+                              const Result& start, double max_reprojection_error,
+                              const BundleAdjustmentOptions& options = {});
+
+// What a plan of poses will determine before the robot moves: the bundle adjustment's
+// observability at the nominal robot, each pose seen as the nominal geometry projects it (views
+// where the marker leaves an image or turns its back do not count), with point noise `noise_px`.
+Observability predictObservability(const RobotModel& model, const StereoCameras& cameras,
+                                   const std::vector<CalibrationPose>& poses, double noise_px);
+
+}  // namespace imagenets_calibration

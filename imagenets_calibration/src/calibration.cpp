@@ -1,0 +1,566 @@
+#include "imagenets_calibration/calibration.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "imagenets_calibration/bundle_adjustment.h"
+#include "imagenets/vision/frames.h"
+
+namespace imagenets_calibration {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string mm(double m) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2f mm", m * 1000);
+  return b;
+}
+std::string deg(double r) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3f deg", r * 180 / M_PI);
+  return b;
+}
+
+// Rotation vector (axis * angle) of a rotation matrix.
+Eigen::Vector3d logRotation(const Eigen::Matrix3d& r) {
+  const Eigen::AngleAxisd aa(r);
+  return aa.axis() * aa.angle();
+}
+Eigen::Matrix3d expRotation(const Eigen::Vector3d& v) {
+  const double a = v.norm();
+  if (a < 1e-15) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(a, v / a).toRotationMatrix();
+}
+
+// A frame perturbed by a 6-vector (translation, rotation vector), applied on the right.
+Eigen::Isometry3d perturb(const Eigen::Isometry3d& t, const Eigen::Matrix<double, 6, 1>& d) {
+  Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+  p.translation() = d.head<3>();
+  p.linear() = expRotation(d.tail<3>());
+  return t * p;
+}
+
+double sampleStd(const std::vector<double>& v) {
+  if (v.size() < 2) return 0.0;
+  const double mean = std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+  double s = 0;
+  for (double x : v) s += (x - mean) * (x - mean);
+  return std::sqrt(s / (v.size() - 1));
+}
+
+// Robust scale of residuals around 0 (1.4826 * median absolute value = sigma for a Gaussian).
+double robustSigma(std::vector<double> r) {
+  if (r.empty()) return 0.0;
+  return 1.4826 * imagenets::frames::median(std::move(r));
+}
+
+}  // namespace
+
+double angleBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return imagenets::frames::rotationAngle(Eigen::Quaterniond(a.rotation()), Eigen::Quaterniond(b.rotation()));
+}
+
+std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, const std::string& method) {
+  const auto& d = model.description();
+  std::vector<CalibrationPose> poses;
+  if (method == "paper") {
+    // The paper's procedure: the same calibration pose every time.
+    for (int k = 0; k < n; ++k) poses.push_back({d.arm_calibration_pose, d.head_calibration_pose});
+    return poses;
+  }
+  // Varied poses, chosen so that every estimated parameter is excited (observability.h; measured
+  // with `imagenets calibration-plan`, figures in docs/calibration.md):
+  // - the arm turns the marker about different axes: every two poses turn other joints both ways
+  //   (the wrist and the elbow most), so the first three poses already hold two relative motions
+  //   about different axes and any five move every identifiable joint;
+  // - the head does not only centre the marker: it looks past it by a fraction of the field of
+  //   view, so the marker is seen in the centre and towards each image corner, with the pan and
+  //   tilt spread that brings.
+  static const std::vector<std::vector<double>> variations_deg{
+      {0, 0, 0, 0, 0, 0, 0},      {0, 0, 0, 0, 20, 0, 25},     {0, 12, 0, -12, 0, 18, 0},  {0, 0, 0, 0, -20, 0, -25},
+      {0, -12, 0, 12, 0, -18, 0}, {10, 0, 14, 0, 0, 0, 16},    {-10, 0, -14, 0, 0, 0, -16}, {0, 8, 0, 8, 18, -12, 0},
+      {0, -8, 0, -8, -18, 12, 0}, {6, 6, 6, 6, 6, 6, 6}};
+  // Where the marker is put in the image, as a fraction of the half field of view (pan, tilt).
+  static const std::vector<std::pair<double, double>> image_positions{
+      {0, 0}, {0.5, 0.5}, {-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}};
+  std::string why;
+  const auto cameras = stereoCamerasOf(d, &why);
+  // Whether the whole marker is seen in both images, a margin from their borders, and not too
+  // obliquely for the detector.
+  auto visible = [&](const CalibrationPose& p) {
+    if (!cameras) return true;
+    const double margin = 0.15 * d.image_width, max_oblique = 50 * M_PI / 180;
+    for (bool right : {false, true}) {
+      const Eigen::Isometry3d m = (right ? model.rightCamera(p.head) : model.leftCamera(p.head)).inverse() * model.marker(p.arm);
+      if (-m.linear().col(2).dot(m.translation().normalized()) < std::cos(max_oblique)) return false;
+      for (const auto& corner : markerDefinedPoints(d.marker_size)) {
+        const Eigen::Vector3d pc = m * corner;
+        const Eigen::Vector2d uv = (right ? cameras->right : cameras->left).project(pc);
+        if (!(pc.z() > 0) || uv.x() < margin || uv.y() < margin || uv.x() > d.image_width - margin ||
+            uv.y() > d.image_height - margin) {
+          return false;
+        }
+      }
+    }
+    return true;
+  };
+  auto withinLimits = [](const std::vector<robot_description::ChainJoint>& joints, const std::vector<double>& q) {
+    for (size_t j = 0; j < joints.size() && j < q.size(); ++j) {
+      if (q[j] < joints[j].min || q[j] > joints[j].max) return false;
+    }
+    return true;
+  };
+  const double half_fov_x = cameras ? std::atan(d.image_width / 2.0 / cameras->left.K(0, 0)) : 0.0;
+  const double half_fov_y = cameras ? std::atan(d.image_height / 2.0 / cameras->left.K(1, 1)) : 0.0;
+  for (int k = 0; k < n; ++k) {
+    const auto& v = variations_deg[k % variations_deg.size()];
+    // A repeat of an arm variation sees the marker at another image position.
+    const auto& at = image_positions[(k + k / variations_deg.size()) % image_positions.size()];
+    CalibrationPose p;
+    // Too far for this robot (joint limits, marker out of view or edge-on): smaller steps.
+    for (double scale = 1.0; scale > 0.05; scale *= 0.7) {
+      p.arm = d.arm_calibration_pose;
+      for (size_t j = 0; j < p.arm.size() && j < v.size(); ++j) p.arm[j] += scale * v[j] * M_PI / 180.0;
+      const auto look = model.lookAt(model.marker(p.arm).translation(), {d.head_calibration_pose[0], d.head_calibration_pose[1]});
+      p.head = {look[0], look[1]};
+      for (double f = 1.0; f > 0.1; f *= 0.7) {
+        CalibrationPose off = p;
+        off.head[0] += f * at.first * half_fov_x;
+        off.head[1] += f * at.second * half_fov_y;
+        if (withinLimits(d.head.joints, off.head) && visible(off)) {
+          p = off;
+          break;
+        }
+      }
+      if (withinLimits(d.arm.joints, p.arm) && visible(p)) break;
+    }
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+Eigen::Isometry3d gripperMarkerInRobot(const RobotModel& model, const std::vector<double>& arm_q) {
+  return model.marker(arm_q);
+}
+
+Eigen::Isometry3d gripperMarkerInRobot(const RobotModel& model, const std::vector<double>& arm_q,
+                                       const Eigen::Isometry3d& marker_offset) {
+  return model.tcp(arm_q) * marker_offset;
+}
+
+Eigen::Isometry3d markerInLeftCamera(const RobotModel& model, const Eigen::Isometry3d& marker_in_right) {
+  return model.leftToRight() * marker_in_right;
+}
+
+Fusion fuseStereoDetections(const std::optional<Eigen::Isometry3d>& left,
+                            const std::optional<Eigen::Isometry3d>& right_in_left, const FusionLimits& limits) {
+  imagenets::frames::FusionLimits l;
+  l.max_position_difference = limits.max_position_difference;
+  l.max_angle_difference = limits.max_angle_difference;
+  const auto f = imagenets::frames::fusePoses(left, right_in_left, l);
+  Fusion out;
+  out.valid = f.valid;
+  out.pose = f.pose;
+  using S = imagenets::frames::FusionResult::Source;
+  out.source = f.source == S::Both ? "both" : f.source == S::First ? "left" : f.source == S::Second ? "right" : "none";
+  out.reason = f.reason;
+  if (!left && !right_in_left) out.reason = "marker not found in either image";
+  return out;
+}
+
+Eigen::Isometry3d leftCameraInRobot(const Eigen::Isometry3d& marker_in_robot, const Eigen::Isometry3d& marker_in_left) {
+  return marker_in_robot * marker_in_left.inverse();
+}
+
+Eigen::Isometry3d headChain(const RobotModel& model, const std::vector<double>& head_q) {
+  return model.headBase().inverse() * model.leftCamera(head_q);
+}
+
+Eigen::Isometry3d pthFixedPoint(const RobotModel& model, const Eigen::Isometry3d& left_camera_in_robot,
+                                const std::vector<double>& head_q) {
+  return left_camera_in_robot * headChain(model, head_q).inverse();
+}
+
+void solveSample(const RobotModel& model, Sample& s, const FusionLimits& limits,
+                 const std::optional<Eigen::Isometry3d>& marker_offset) {
+  s.valid = false;
+  s.fusion = "none";
+  std::optional<Eigen::Isometry3d> left, right;
+  std::string rejected;
+  auto usable = [&](const MarkerObservation& o, const char* side) {
+    if (!o.found) return false;
+    if (o.reprojection_error > limits.max_reprojection_error) {
+      char b[160];
+      std::snprintf(b, sizeof b, "%s detection rejected: reprojection error %.3f px > %.3f px (disturbed corners); ", side,
+                    o.reprojection_error, limits.max_reprojection_error);
+      rejected += b;
+      return false;
+    }
+    return true;
+  };
+  if (usable(s.left, "left")) left = s.left.pose;
+  if (usable(s.right, "right")) right = markerInLeftCamera(model, s.right.pose);
+  const Fusion f = fuseStereoDetections(left, right, limits);
+  s.fusion = f.source;
+  if (!f.valid) {
+    std::string why = f.reason;
+    if (!s.left.found && !s.right.found) {
+      why = "marker not found (left: " + (s.left.reason.empty() ? "no detection" : s.left.reason) +
+            "; right: " + (s.right.reason.empty() ? "no detection" : s.right.reason) + ")";
+    }
+    s.reason = rejected + why;
+    return;
+  }
+  s.marker_in_left = f.pose;
+  const Eigen::Isometry3d marker = marker_offset ? gripperMarkerInRobot(model, s.arm_q, *marker_offset)
+                                                 : gripperMarkerInRobot(model, s.arm_q);
+  s.fixed_point = pthFixedPoint(model, leftCameraInRobot(marker, s.marker_in_left), s.head_q);
+  s.valid = true;
+  s.reason = rejected + f.reason;
+}
+
+namespace {
+
+// Residuals of every sample's frame against `centre`; NaN for invalid samples.
+void residuals(const std::vector<Sample>& samples, const Eigen::Isometry3d& centre, Result& r) {
+  r.residual_translation.assign(samples.size(), kNaN);
+  r.residual_rotation.assign(samples.size(), kNaN);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (!samples[i].valid) continue;
+    r.residual_translation[i] = (samples[i].fixed_point.translation() - centre.translation()).norm();
+    r.residual_rotation[i] = angleBetween(samples[i].fixed_point, centre);
+  }
+}
+
+// Mean rotation + per-axis median translation of the given samples (the paper's combination),
+// and the per-axis spread of those samples.
+void combineUsed(const std::vector<Sample>& samples, Result& r) {
+  std::vector<Eigen::Quaterniond> q;
+  std::vector<Eigen::Vector3d> t;
+  for (int i : r.used) {
+    q.emplace_back(samples[i].fixed_point.rotation());
+    t.push_back(samples[i].fixed_point.translation());
+  }
+  r.fixed_point = Eigen::Isometry3d::Identity();
+  r.fixed_point.linear() = imagenets::frames::meanRotation(q).toRotationMatrix();
+  r.fixed_point.translation() = imagenets::frames::medianTranslation(t);
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> tv, rv;
+    for (int i : r.used) {
+      tv.push_back(samples[i].fixed_point.translation()[axis]);
+      rv.push_back(logRotation(r.fixed_point.rotation().transpose() * samples[i].fixed_point.rotation())[axis]);
+    }
+    r.std_translation[axis] = sampleStd(tv);
+    r.std_rotation[axis] = sampleStd(rv);
+  }
+}
+
+// Per-sample frames with the estimated model (marker and joint offsets): their spread and residuals.
+void perSampleFrames(const RobotModel& model, Result& r, const FusionLimits& limits) {
+  const RobotModel estimated = withJointOffsets(model, r.arm_joint_offsets, r.head_joint_offsets);
+  for (int i : r.used) solveSample(estimated, r.samples[i], limits, r.marker_offset);
+  Result spread = r;
+  combineUsed(r.samples, spread);
+  r.std_translation = spread.std_translation;
+  r.std_rotation = spread.std_rotation;
+  residuals(r.samples, r.fixed_point, r);
+}
+
+}  // namespace
+
+Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions& options) {
+  Result r;
+  r.method = "paper";
+  std::vector<int> valid;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i].valid) {
+      valid.push_back(static_cast<int>(i));
+    } else {
+      r.rejected.push_back(static_cast<int>(i));
+      r.rejection_reasons.push_back(samples[i].reason.empty() ? "invalid" : samples[i].reason);
+    }
+  }
+  if (valid.empty()) {
+    r.samples = std::move(samples);
+    r.message = "no valid sample";
+    if (!r.rejection_reasons.empty()) r.message += ": sample 0: " + r.rejection_reasons.front();
+    residuals(r.samples, Eigen::Isometry3d::Identity(), r);
+    return r;
+  }
+  // Robust centre: per-axis median translation and the medoid rotation (the sample rotation with
+  // the smallest summed angle to the others): an outlier cannot drag either.
+  std::vector<Eigen::Vector3d> t;
+  for (int i : valid) t.push_back(samples[i].fixed_point.translation());
+  Eigen::Isometry3d centre = Eigen::Isometry3d::Identity();
+  centre.translation() = imagenets::frames::medianTranslation(t);
+  double best = std::numeric_limits<double>::infinity();
+  for (int i : valid) {
+    double sum = 0;
+    for (int j : valid) sum += angleBetween(samples[i].fixed_point, samples[j].fixed_point);
+    if (sum < best) {
+      best = sum;
+      centre.linear() = samples[i].fixed_point.rotation();
+    }
+  }
+  std::vector<double> dt, dr;
+  for (int i : valid) {
+    dt.push_back((samples[i].fixed_point.translation() - centre.translation()).norm());
+    dr.push_back(angleBetween(samples[i].fixed_point, centre));
+  }
+  const double limit_t = std::max(options.outlier_translation_floor, options.outlier_sigmas * robustSigma(dt));
+  const double limit_r = std::max(options.outlier_rotation_floor, options.outlier_sigmas * robustSigma(dr));
+  for (size_t k = 0; k < valid.size(); ++k) {
+    if (dt[k] > limit_t || dr[k] > limit_r) {
+      r.rejected.push_back(valid[k]);
+      r.rejection_reasons.push_back("outlier: " + mm(dt[k]) + " / " + deg(dr[k]) + " from the robust centre (limits " +
+                                    mm(limit_t) + " / " + deg(limit_r) + ")");
+    } else {
+      r.used.push_back(valid[k]);
+    }
+  }
+  if (static_cast<int>(r.used.size()) < std::max(1, options.min_valid_samples)) {
+    r.samples = std::move(samples);
+    r.message = "too few valid samples: " + std::to_string(r.used.size()) + " of " + std::to_string(r.samples.size()) +
+                " (need " + std::to_string(std::max(1, options.min_valid_samples)) + ")";
+    if (!r.rejected.empty()) {
+      r.message += "; sample " + std::to_string(r.rejected.front()) + ": " + r.rejection_reasons.front();
+    }
+    residuals(r.samples, centre, r);
+    return r;
+  }
+  combineUsed(samples, r);
+  r.samples = std::move(samples);
+  residuals(r.samples, r.fixed_point, r);
+  r.success = true;
+  r.message = "calibrated from " + std::to_string(r.used.size()) + " of " + std::to_string(r.samples.size()) +
+              " samples (" + std::to_string(r.rejected.size()) + " rejected)";
+  return r;
+}
+
+RobotModel withJointOffsets(const RobotModel& model, const std::vector<double>& arm, const std::vector<double>& head) {
+  robot_description::RobotDescription d = model.description();
+  for (size_t i = 0; i < arm.size() && i < d.arm.joints.size(); ++i) d.arm.joints[i].offset += arm[i];
+  for (size_t i = 0; i < head.size() && i < d.head.joints.size(); ++i) d.head.joints[i].offset += head[i];
+  return RobotModel(std::move(d));
+}
+
+RobotModel calibratedModel(const RobotModel& nominal, const Result& result) {
+  robot_description::RobotDescription d =
+      withJointOffsets(nominal, result.arm_joint_offsets, result.head_joint_offsets).description();
+  d.head.mount = result.fixed_point;
+  d.marker.pose = result.marker_offset;
+  return RobotModel(std::move(d));
+}
+
+Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits) {
+  Result r = paper;
+  r.method = "joint";
+  if (!paper.success) return r;
+  const Eigen::Isometry3d m_nominal = model.description().marker.pose;
+  const size_t n_arm = model.description().arm.joints.size(), n_head = model.description().head.joints.size();
+  // Identifiable joint offsets: arm joints 2..n-1 and the head's tilt (see the header).
+  std::vector<std::pair<bool, size_t>> offsets;  // (is arm, joint index)
+  for (size_t j = 1; j + 1 < n_arm; ++j) offsets.push_back({true, j});
+  for (size_t j = 1; j < n_head; ++j) offsets.push_back({false, j});
+  const int n_params = 12 + static_cast<int>(offsets.size());
+  // Corner and centre points of the marker (its frame), where the residuals are measured.
+  const double h = model.description().marker_size / 2;
+  const std::vector<Eigen::Vector3d> points{{0, 0, 0}, {-h, h, 0}, {h, h, 0}, {h, -h, 0}, {-h, -h, 0}};
+  const double sigma_point = 0.0002;       // m: expected measurement noise of a marker point
+  const double prior_translation = 0.03;   // m: weak prior on the marker offset
+  const double prior_rotation = 0.175;     // rad (10 deg)
+  const double prior_offset = 0.0035;      // rad (0.2 deg): encoder zero offsets are small
+
+  std::vector<const Sample*> used;
+  std::vector<int> used_index = paper.used;
+  for (int i : used_index) used.push_back(&paper.samples[i]);
+  int n_res = 0;
+  struct State {
+    Eigen::Isometry3d x, m;
+    std::vector<double> arm, head;
+  };
+  auto residual = [&](const State& st) {
+    const RobotModel mdl = withJointOffsets(model, st.arm, st.head);
+    n_res = static_cast<int>(used.size() * points.size() * 3 + 6 + offsets.size());
+    Eigen::VectorXd e(n_res);
+    int k = 0;
+    for (const Sample* s : used) {
+      const Eigen::Isometry3d seen = st.x * headChain(mdl, s->head_q) * s->marker_in_left, kin = mdl.tcp(s->arm_q) * st.m;
+      for (const auto& p : points) {
+        e.segment<3>(k) = (seen * p - kin * p) / sigma_point;
+        k += 3;
+      }
+    }
+    const Eigen::Isometry3d dm = m_nominal.inverse() * st.m;
+    e.segment<3>(k) = dm.translation() / prior_translation;
+    e.segment<3>(k + 3) = logRotation(dm.rotation()) / prior_rotation;
+    k += 6;
+    for (const auto& o : offsets) e[k++] = (o.first ? st.arm[o.second] : st.head[o.second]) / prior_offset;
+    return e;
+  };
+  auto apply = [&](const State& st, const Eigen::VectorXd& d) {
+    State out = st;
+    out.x = perturb(st.x, d.segment<6>(0));
+    out.m = perturb(st.m, d.segment<6>(6));
+    for (size_t i = 0; i < offsets.size(); ++i) {
+      (offsets[i].first ? out.arm[offsets[i].second] : out.head[offsets[i].second]) += d[12 + i];
+    }
+    return out;
+  };
+  // Levenberg-Marquardt from `st` over the samples in `used`.
+  auto fit = [&](State st) {
+    double cost = residual(st).squaredNorm();
+    const int n_res_now = n_res;
+    double lambda = 1e-3;
+    for (int iter = 0; iter < 50; ++iter) {
+      const Eigen::VectorXd e0 = residual(st);
+      Eigen::MatrixXd j(n_res_now, n_params);
+      const double step = 1e-7;
+      for (int c = 0; c < n_params; ++c) {
+        Eigen::VectorXd d = Eigen::VectorXd::Zero(n_params);
+        d[c] = step;
+        j.col(c) = (residual(apply(st, d)) - e0) / step;
+      }
+      const Eigen::MatrixXd jtj = j.transpose() * j;
+      const Eigen::VectorXd g = j.transpose() * e0;
+      bool improved = false;
+      double gain = 0;
+      for (int tries = 0; tries < 10 && !improved; ++tries) {
+        Eigen::MatrixXd a = jtj;
+        a.diagonal() += lambda * jtj.diagonal().cwiseMax(1e-9);
+        const Eigen::VectorXd delta = -a.ldlt().solve(g);
+        const State next = apply(st, delta);
+        const double c1 = residual(next).squaredNorm();
+        if (c1 < cost) {
+          gain = cost - c1;
+          st = next;
+          cost = c1;
+          lambda = std::max(1e-9, lambda / 3);
+          improved = true;
+        } else {
+          lambda *= 10;
+        }
+      }
+      if (!improved || gain < 1e-12 * std::max(1.0, cost)) break;
+    }
+    return st;
+  };
+  State st = fit(State{paper.fixed_point, m_nominal, std::vector<double>(n_arm, 0.0), std::vector<double>(n_head, 0.0)});
+  // A spurious detection that passed the per-sample checks shows as a sample that the joint model
+  // cannot explain: drop the worst while its RMS point residual is far above the others'.
+  std::vector<std::pair<int, double>> dropped;
+  const size_t max_drops = used.size() / 3;
+  while (dropped.size() < max_drops && used.size() > 2) {
+    const Eigen::VectorXd e = residual(st) * sigma_point;
+    std::vector<double> rms(used.size());
+    for (size_t k = 0; k < used.size(); ++k) {
+      rms[k] = e.segment(static_cast<int>(k * points.size() * 3), static_cast<int>(points.size() * 3)).norm() /
+               std::sqrt(static_cast<double>(points.size()));
+    }
+    const size_t worst = static_cast<size_t>(std::max_element(rms.begin(), rms.end()) - rms.begin());
+    const double limit = std::max(0.0003, 5.0 * imagenets::frames::median(rms));
+    if (rms[worst] <= limit) break;
+    dropped.push_back({used_index[worst], rms[worst]});
+    used.erase(used.begin() + worst);
+    used_index.erase(used_index.begin() + worst);
+    st = fit(st);
+  }
+  for (const auto& d : dropped) {
+    r.used.erase(std::find(r.used.begin(), r.used.end(), d.first));
+    r.rejected.push_back(d.first);
+    r.rejection_reasons.push_back("outlier in the joint solution: RMS point residual " + mm(d.second));
+  }
+  st.x.linear() = Eigen::Quaterniond(st.x.rotation()).normalized().toRotationMatrix();
+  r.fixed_point = st.x;
+  r.marker_offset = st.m;
+  r.arm_joint_offsets = st.arm;
+  r.head_joint_offsets = st.head;
+  perSampleFrames(model, r, limits);
+  double max_offset = 0;
+  for (double o : st.arm) max_offset = std::max(max_offset, std::abs(o));
+  for (double o : st.head) max_offset = std::max(max_offset, std::abs(o));
+  r.message += "; joint least squares of fixed point, marker offset (moved " +
+               mm((m_nominal.inverse() * st.m).translation().norm()) + " / " + deg(angleBetween(m_nominal, st.m)) +
+               ") and joint zero offsets (largest " + deg(max_offset) + ")";
+  return r;
+}
+
+void refineAtPixelLevel(const RobotModel& model, Result& r, const FusionLimits& limits) {
+  if (!r.success) return;
+  std::string why;
+  const auto cameras = stereoCamerasOf(model.description(), &why);
+  if (!cameras) {
+    r.message += "; pixel-level fit skipped: no camera model (" + why + ")";
+    return;
+  }
+  std::vector<const Sample*> used;
+  for (int i : r.used) used.push_back(&r.samples[i]);
+  // The marker's border is ARToolKit's quarter of its size (config/markers/gripper.yaml).
+  const BundleAdjustment ba = bundleAdjust(model, *cameras, markerDefinedPoints(model.description().marker_size), used, r,
+                                           limits.max_reprojection_error);
+  r.message += "; " + ba.message;
+  if (!ba.ok) return;
+  if (ba.determined) {
+    r.fixed_point = ba.fixed_point;
+    r.marker_offset = ba.marker_offset;
+    r.arm_joint_offsets = ba.arm_joint_offsets;
+    r.head_joint_offsets = ba.head_joint_offsets;
+  } else {
+    // What the images leave free comes from the priors, which the 3D-point solve holds more
+    // firmly (one loop, 100 runs: 1.76 mm / 0.12 deg off against 1.51 mm / 0.21 deg refined):
+    // its frames stay, with the fit's honest (large) uncertainty.
+    r.message += "; the images do not determine the fixed point (too few different poses): the 3D-point solution is kept";
+  }
+  r.has_covariance = ba.fixed_point_covariance.trace() > 0;
+  r.fixed_point_covariance = ba.fixed_point_covariance;
+  r.marker_offset_covariance = ba.marker_offset_covariance;
+  r.arm_joint_offset_std = ba.arm_joint_offset_std;
+  r.head_joint_offset_std = ba.head_joint_offset_std;
+  r.reprojection_rms = ba.reprojection_rms;
+  r.unobservable = ba.observability.unobservable;
+  r.condition_number = ba.observability.condition_number;
+  perSampleFrames(model, r, limits);
+  if (r.has_covariance) {
+    r.message += "; 1 sigma " + mm(r.sigmaTranslation()) + " / " + deg(r.sigmaRotation());
+  }
+  if (ba.observability.computed()) r.message += "; " + ba.observability.summary();
+}
+
+Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std::string& method,
+                 const FusionLimits& limits, const CombineOptions& options) {
+  if (method != "paper" && method != "joint") {
+    throw std::invalid_argument("unknown calibration method '" + method + "' (expected 'paper' or 'joint')");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  FusionLimits tightened = limits;
+  std::vector<double> reprojection;
+  for (const auto& s : samples) {
+    for (const auto* o : {&s.left, &s.right}) {
+      if (o->found) reprojection.push_back(o->reprojection_error);
+    }
+  }
+  if (limits.relative_reprojection_error > 0 && !reprojection.empty()) {
+    std::nth_element(reprojection.begin(), reprojection.begin() + reprojection.size() / 2, reprojection.end());
+    const double typical = reprojection[reprojection.size() / 2];
+    tightened.max_reprojection_error = std::min(
+        limits.max_reprojection_error, std::max(limits.min_reprojection_error, limits.relative_reprojection_error * typical));
+  }
+  for (auto& s : samples) solveSample(model, s, tightened);
+  Result r = combineRedundantSamples(std::move(samples), options);
+  r.marker_offset = model.description().marker.pose;
+  if (method == "joint") {
+    r = solveJointly(model, r, tightened);
+    refineAtPixelLevel(model, r, tightened);
+  }
+  r.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace imagenets_calibration

@@ -1,0 +1,168 @@
+// Executor overhead, parallel speed-up and feedback sweep strategies (issues 2 and 3).
+// Prints figures; passes or fails nothing.
+#include <chrono>
+#include <cstdio>
+#include <functional>
+
+#include <imagenets/FeedbackTrace.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <std_msgs/Float64.h>
+
+#include "imagenets/blocks/image.h"
+#include "imagenets/executor.h"
+#include "imagenets/registry.h"
+#include "imagenets/package_file.h"
+
+using namespace imagenets;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+// The trivial block of the overhead chain: out = in + 1.
+boost::shared_ptr<std_msgs::Float64> increment(const std_msgs::Float64& in) {
+  auto out = boost::make_shared<std_msgs::Float64>();
+  out->data = in.data + 1;
+  return out;
+}
+
+class Increment : public Block {
+ public:
+  Increment() {
+    addInput<std_msgs::Float64>("in", "x");
+    addOutput<std_msgs::Float64>("out", "x + 1");
+  }
+  void process(Context& ctx) override { ctx.output("out", increment(*ctx.input<std_msgs::Float64>("in"))); }
+};
+
+// Median wall time of `fn` over `reps` repetitions, in microseconds.
+double medianMicros(int reps, const std::function<void()>& fn) {
+  std::vector<double> t;
+  for (int i = 0; i < reps; ++i) {
+    auto start = Clock::now();
+    fn();
+    t.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
+  }
+  std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+  return t[t.size() / 2];
+}
+
+std::unique_ptr<Executor> load(const std::string& yaml, int threads) {
+  return std::make_unique<Executor>(Net::build(parseNetText(yaml, "bench.yaml", "")), ExecutorOptions{threads});
+}
+
+}  // namespace
+
+IMAGENETS_REGISTER_BLOCK_TYPE(Increment, "bench/Increment", "bench", "x + 1");
+
+int main(int argc, char** argv) {
+  const std::string image_path = argc > 1 ? argv[1] : imagenets::packageFile("imagenets_blocks", "config/images/scene.png");
+  cv::Mat bgr = cv::imread(image_path, cv::IMREAD_COLOR);
+  if (bgr.empty()) {
+    std::fprintf(stderr, "cannot read %s (run from the repository root or pass an image)\n", image_path.c_str());
+    return 1;
+  }
+  cv::resize(bgr, bgr, cv::Size(1024, 768));
+  auto image = blocks::toImageMsg(bgr, "bgr8", std_msgs::Header());
+
+  // 1. A chain of N trivial blocks, executor vs calling the same function N times.
+  {
+    const int n = 100;
+    std::string yaml = "blocks:\n";
+    for (int i = 0; i < n; ++i) yaml += "  b" + std::to_string(i) + ": {type: bench/Increment}\n";
+    yaml += "links:\n";
+    for (int i = 1; i < n; ++i) yaml += "  - b" + std::to_string(i - 1) + ".out -> b" + std::to_string(i) + ".in\n";
+    for (int threads : {1, 2}) {
+      auto e = load(yaml, threads);
+      auto zero = boost::make_shared<std_msgs::Float64>();
+      int k = 0;
+      double exec_us = medianMicros(300, [&] {
+        zero->data = ++k;  // a new input each run: the whole chain is out of date
+        e->setInput<std_msgs::Float64>("b0.in", boost::shared_ptr<const std_msgs::Float64>(boost::make_shared<std_msgs::Float64>(*zero)));
+        e->run();
+      });
+      double direct_us = medianMicros(300, [&] {
+        boost::shared_ptr<const std_msgs::Float64> v = boost::make_shared<std_msgs::Float64>(*zero);
+        for (int i = 0; i < n; ++i) v = increment(*v);
+      });
+      std::printf("chain of %d trivial blocks, %d thread(s): executor %.2f us/block, direct %.3f us/block, "
+                  "overhead %.2f us/block (ratio %.0fx)\n",
+                  n, threads, exec_us / n, direct_us / n, (exec_us - direct_us) / n, exec_us / direct_us);
+    }
+  }
+
+  // 2. An image chain (gray -> blur -> threshold) on 1024x768, executor vs raw OpenCV.
+  {
+    auto e = load(R"(
+blocks:
+  gray: {type: imagenets/Grayscale}
+  blur: {type: imagenets/GaussianBlur, properties: {kernel_size: 5}}
+  threshold: {type: imagenets/Threshold, properties: {threshold: 60}}
+links: [gray.image -> blur.image, blur.image -> threshold.image]
+)", 2);
+    double exec_us = medianMicros(100, [&] {
+      e->setInput<sensor_msgs::Image>("gray.image", image);
+      e->run();
+    });
+    double direct_us = medianMicros(100, [&] {
+      cv::Mat g, b, t;
+      cv::cvtColor(bgr, g, cv::COLOR_BGR2GRAY);
+      cv::GaussianBlur(g, b, cv::Size(5, 5), 0);
+      cv::threshold(b, t, 60, 255, cv::THRESH_BINARY);
+    });
+    std::printf("image chain gray->blur->threshold 1024x768: executor %.0f us, raw OpenCV %.0f us, ratio %.2f "
+                "(overhead %.0f us per block)\n",
+                exec_us, direct_us, exec_us / direct_us, (exec_us - direct_us) / 3);
+  }
+
+  // 3. Two independent image branches: 1 thread vs 2 threads.
+  {
+    const std::string yaml = R"(
+blocks:
+  gray: {type: imagenets/Grayscale}
+  blur_a: {type: imagenets/GaussianBlur, properties: {kernel_size: 21}}
+  blur_b: {type: imagenets/GaussianBlur, properties: {kernel_size: 21}}
+  thr_a: {type: imagenets/Threshold}
+  thr_b: {type: imagenets/Threshold}
+links: [gray.image -> blur_a.image, gray.image -> blur_b.image, blur_a.image -> thr_a.image, blur_b.image -> thr_b.image]
+)";
+    double t[3] = {0, 0, 0};
+    for (int threads : {1, 2}) {
+      auto e = load(yaml, threads);
+      cv::setNumThreads(1);  // measure the executor's parallelism, not OpenCV's
+      t[threads] = medianMicros(60, [&] {
+        e->setInput<sensor_msgs::Image>("gray.image", image);
+        e->run();
+      });
+    }
+    std::printf("two independent branches (blur 21x21 + threshold): 1 thread %.0f us, 2 threads %.0f us, "
+                "speed-up %.2fx\n",
+                t[1], t[2], t[1] / t[2]);
+  }
+
+  // 4. Feedback sweep strategies: threshold 40..80 scored by segmentation quality.
+  {
+    cv::setNumThreads(1);
+    for (const char* strategy : {"exhaustive, parallel: false", "exhaustive, parallel: true",
+                                 "coarse_to_fine, parallel: true"}) {
+      auto e = load(std::string(R"(
+blocks:
+  gray: {type: imagenets/Grayscale}
+  threshold:
+    type: imagenets/Threshold
+    feedback: {property: threshold, from: 40, to: 80, step: 1, score: quality.score, search: )") + strategy + R"(}
+  quality: {type: imagenets/SegmentationQuality}
+links: [gray.image -> threshold.image, gray.image -> quality.gray, threshold.image -> quality.binary]
+)", 2);
+      boost::shared_ptr<const FeedbackTrace> trace;
+      double us = medianMicros(15, [&] {
+        e->setInput<sensor_msgs::Image>("gray.image", image);
+        e->run();
+        trace = e->output<FeedbackTrace>("threshold.feedback_trace");
+      });
+      std::printf("feedback 40..80 (%-31s): %2u trials, %6.1f ms, chose %.0f (score %.4f)\n", strategy,
+                  trace->trials, us / 1000, trace->chosen_value, trace->chosen_score);
+    }
+  }
+  return 0;
+}

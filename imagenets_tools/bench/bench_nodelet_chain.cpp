@@ -1,0 +1,377 @@
+// bench_nodelet_chain: a 1024x768 image through a chain of 5 block nodelets, all in one nodelet
+// manager (messages pass by pointer), versus the same chain as 5 plain hand-written nodelets in
+// one manager (no BlockNodelet host: subscribe, publish the same pointer), versus the block chain
+// as 5 separate processes (TCPROS). Prints median and p99 latency, end to end and per hop, and
+// throughput, side by side with their ratios: the host's cost per hop is block / plain. As root,
+// also the block chain as 5 processes on two hosts (network namespaces made by scripts/two-hosts:
+// blocks 1, 3, 5 on the "robot", the driver and blocks 2, 4 on the "workstation"), so every hop
+// crosses the veth between them: the price of splitting a net over machines (docs/launch.md).
+// Starts its own ROS master on a private port; needs no sourced environment.
+//
+// The blocks are imagenets/Grayscale fed a mono8 image, which they pass on unchanged (by pointer),
+// so the figures are the cost of the links themselves, not of image processing.
+#include <errno.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nodelet/loader.h>
+#include <nodelet/nodelet.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+
+namespace {
+
+constexpr int kBlocks = 5;
+constexpr int kHops = kBlocks + 1;  // driver -> block 1 -> ... -> block 5 -> driver
+constexpr int kLatencySamples = 300;
+constexpr int kThroughputMessages = 500;
+constexpr int kWindow = 2;  // messages in flight during the throughput run
+constexpr const char* kRobotIp = "10.77.0.1";  // scripts/two-hosts
+constexpr const char* kWorkstationIp = "10.77.0.2";
+
+using Clock = std::chrono::steady_clock;
+
+pid_t spawn(const std::vector<std::string>& args, bool quiet) {
+  pid_t pid = fork();
+  if (pid == 0) {
+    if (quiet) {
+      FILE* null = std::fopen("/dev/null", "w");
+      if (null) {
+        dup2(fileno(null), STDOUT_FILENO);
+        dup2(fileno(null), STDERR_FILENO);
+      }
+    }
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execvp(argv[0], argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+void stop(pid_t pid) {
+  if (pid <= 0) return;
+  kill(pid, SIGINT);
+  for (int i = 0; i < 50; ++i) {
+    if (waitpid(pid, nullptr, WNOHANG) == pid) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+}
+
+struct Figures {
+  std::vector<double> latency_us;  // end to end, one message in flight
+  double throughput = 0.0;         // messages per second with kWindow in flight
+  int lost = 0;
+  bool same_pointer = false;       // the image came back as the object sent
+};
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  size_t i = static_cast<size_t>(p * (v.size() - 1) + 0.5);
+  return v[std::min(i, v.size() - 1)];
+}
+
+// Sends images into `in_topic` and times their arrival on `out_topic`.
+class Driver {
+ public:
+  Driver(const std::string& in_topic, const std::string& out_topic) {
+    ros::NodeHandle nh;
+    pub_ = nh.advertise<sensor_msgs::Image>(in_topic, 10);
+    sub_ = nh.subscribe(out_topic, 10, &Driver::onImage, this, ros::TransportHints().tcpNoDelay());
+    image_ = boost::make_shared<sensor_msgs::Image>();
+    image_->width = 1024;
+    image_->height = 768;
+    image_->encoding = "mono8";
+    image_->step = 1024;
+    image_->data.assign(1024 * 768, 128);
+  }
+
+  Figures run() {
+    Figures f;
+    // Warm up: until images make it through the whole chain (connections are set up lazily).
+    int warm = 0;
+    for (int i = 0; i < 200 && warm < 20; ++i) warm += sendAndWait(0.5) >= 0 ? 1 : 0;
+    if (warm == 0) {
+      std::fprintf(stderr, "no image came through the chain\n");
+      std::exit(1);
+    }
+    for (int i = 0; i < kLatencySamples; ++i) {
+      double us = sendAndWait(2.0);
+      if (us < 0) ++f.lost;
+      else f.latency_us.push_back(us);
+    }
+    f.same_pointer = last_same_pointer_;
+    // Throughput: keep kWindow images in flight.
+    const auto start = Clock::now();
+    int sent = 0, done_before;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_before = received_;
+    }
+    while (sent < kThroughputMessages) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (!cv_.wait_for(lock, std::chrono::seconds(2), [&] { return sent - (received_ - done_before) < kWindow; })) {
+        ++f.lost;
+        done_before -= 1;  // give up on one message in flight
+        continue;
+      }
+      lock.unlock();
+      publish();
+      ++sent;
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    cv_.wait_for(lock, std::chrono::seconds(2), [&] { return received_ - done_before >= sent; });
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    f.throughput = (received_ - done_before) / seconds;
+    return f;
+  }
+
+ private:
+  void publish() {
+    auto image = boost::make_shared<sensor_msgs::Image>(*image_);  // a fresh message each time
+    image->header.stamp = ros::Time::now();
+    sensor_msgs::ImageConstPtr sent = image;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      in_flight_ = sent;
+      sent_at_ = Clock::now();
+    }
+    pub_.publish(sent);
+  }
+
+  // End-to-end microseconds, or -1 when nothing came back in time.
+  double sendAndWait(double timeout) {
+    int before;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      before = received_;
+    }
+    publish();
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (!cv_.wait_for(lock, std::chrono::duration<double>(timeout), [&] { return received_ > before; })) return -1;
+    return std::chrono::duration<double, std::micro>(received_at_ - sent_at_).count();
+  }
+
+  void onImage(const sensor_msgs::ImageConstPtr& image) {
+    const auto now = Clock::now();
+    std::lock_guard<std::mutex> lock(mutex_);
+    received_at_ = now;
+    last_same_pointer_ = image.get() == in_flight_.get();
+    ++received_;
+    cv_.notify_all();
+  }
+
+  ros::Publisher pub_;
+  ros::Subscriber sub_;
+  sensor_msgs::ImagePtr image_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  sensor_msgs::ImageConstPtr in_flight_;
+  Clock::time_point sent_at_, received_at_;
+  int received_ = 0;
+  bool last_same_pointer_ = false;
+};
+
+std::string blockName(const std::string& prefix, int i) { return "/" + prefix + std::to_string(i); }
+
+// What a careful hand-written nodelet does for the same stage: take the image, pass the same
+// pointer on. No ports, properties, pairing, stats or status.
+class PlainPass : public nodelet::Nodelet {
+ private:
+  void onInit() override {
+    ros::NodeHandle& pnh = getPrivateNodeHandle();
+    pub_ = pnh.advertise<sensor_msgs::Image>("out/image", 5);
+    sub_ = pnh.subscribe("in/image", 5, &PlainPass::onImage, this);
+  }
+  void onImage(const sensor_msgs::ImageConstPtr& image) { pub_.publish(image); }
+  ros::Publisher pub_;
+  ros::Subscriber sub_;
+};
+
+// The chain of `type` nodelets named /<prefix>1.. in `manager` (this process: driver and nodelets
+// share it), timed end to end.
+Figures chainInOneManager(nodelet::Loader& manager, const std::string& type, const std::string& prefix) {
+  const std::string in = "/bench/" + prefix + "_in";
+  for (int i = 1; i <= kBlocks; ++i) {
+    const std::string name = blockName(prefix, i);
+    nodelet::M_string remap{{name + "/in/image", i == 1 ? in : blockName(prefix, i - 1) + "/out/image"}};
+    if (!manager.load(name, type, remap, {})) {
+      std::fprintf(stderr, "could not load %s as a nodelet (plug-in path?)\n", type.c_str());
+      std::exit(1);
+    }
+  }
+  Driver driver(in, blockName(prefix, kBlocks) + "/out/image");
+  return driver.run();
+}
+
+Figures inOneManager() {
+  nodelet::Loader manager(false);
+  return chainInOneManager(manager, "imagenets/Grayscale", "m");
+}
+
+Figures inOneManagerPlain() {
+  // The plain nodelets are created directly (no plug-in lookup).
+  const boost::function<boost::shared_ptr<nodelet::Nodelet>(const std::string&)> create =
+      [](const std::string&) { return boost::shared_ptr<nodelet::Nodelet>(new PlainPass); };
+  nodelet::Loader manager(create);
+  return chainInOneManager(manager, "bench/PlainPass", "h");
+}
+
+// The chain as one process per block. With `robot_namespace`, blocks 1, 3 and 5 run there (this
+// process runs in the other host's namespace), so every hop crosses between the two hosts.
+Figures inSeparateProcesses(const std::string& prefix, const std::string& robot_namespace = "") {
+  std::vector<pid_t> pids;
+  for (int i = 1; i <= kBlocks; ++i) {
+    const std::string name = blockName(prefix, i);
+    const std::string input = i == 1 ? "/bench/" + prefix + "_in" : blockName(prefix, i - 1) + "/out/image";
+    std::vector<std::string> command{"/usr/lib/nodelet/nodelet", "standalone", "imagenets/Grayscale",
+                                     "__name:=" + name.substr(1), name + "/in/image:=" + input};
+    if (!robot_namespace.empty() && i % 2 == 1) {
+      const std::vector<std::string> on_robot{"ip", "netns", "exec", robot_namespace, "env", "-u", "ROS_HOSTNAME",
+                                              std::string("ROS_IP=") + kRobotIp};
+      command.insert(command.begin(), on_robot.begin(), on_robot.end());
+    }
+    pids.push_back(spawn(command, true));
+  }
+  Figures f;
+  {
+    Driver driver("/bench/" + prefix + "_in", blockName(prefix, kBlocks) + "/out/image");
+    f = driver.run();
+  }
+  for (pid_t pid : pids) stop(pid);
+  return f;
+}
+
+// As root: makes the two hosts and runs this benchmark again on the workstation (which then
+// measures everything, the two-host chain included); removes the hosts when it ends. Returns false
+// (and says why) when it cannot: the benchmark then runs on one host only.
+bool runOnTwoHosts(char** argv, int* status) {
+  if (std::getenv("IMAGENETS_BENCH_HOSTS")) return false;  // already on the workstation
+  const std::string two_hosts = std::string(IMAGENETS_SOURCE_DIR) + "/scripts/two-hosts";
+  if (std::system((two_hosts + " check").c_str()) != 0) {
+    std::printf("(two hosts not measured: network namespaces need root)\n\n");
+    return false;
+  }
+  const std::string id = "imagenets-bench-" + std::to_string(getpid());
+  if (std::system((two_hosts + " up " + id).c_str()) != 0) return false;
+  setenv("IMAGENETS_BENCH_HOSTS", id.c_str(), 1);
+  signal(SIGINT, [](int) {});  // Ctrl-C ends the run on the workstation; then remove the hosts
+  pid_t child = spawn({"ip", "netns", "exec", id + "-workstation", "env", "-u", "ROS_HOSTNAME",
+                       std::string("ROS_IP=") + kWorkstationIp, argv[0]},
+                      false);
+  int wstatus = 0;
+  while (waitpid(child, &wstatus, 0) < 0 && errno == EINTR) {
+  }
+  std::system((two_hosts + " down " + id).c_str());
+  *status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 1;
+  return true;
+}
+
+// Runs again through the catkin devel environment so pluginlib finds the imagenets plug-ins.
+void ensureEnvironment(char** argv) {
+  if (std::getenv("IMAGENETS_BENCH_ENV")) return;
+  setenv("IMAGENETS_BENCH_ENV", "1", 1);
+  const std::string path = std::string("/usr/bin:") + (std::getenv("PATH") ? std::getenv("PATH") : "");
+  setenv("PATH", path.c_str(), 1);  // Debian's python for the master
+  const std::string env_sh = std::string(IMAGENETS_DEVEL_PREFIX) + "/env.sh";
+  execl(env_sh.c_str(), env_sh.c_str(), argv[0], static_cast<char*>(nullptr));
+  std::perror(env_sh.c_str());
+  std::exit(1);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ensureEnvironment(argv);
+  int status = 0;
+  if (runOnTwoHosts(argv, &status)) return status;
+  const char* hosts = std::getenv("IMAGENETS_BENCH_HOSTS");
+  const int port = 11800 + static_cast<int>(getpid() % 1000);
+  const std::string uri = std::string("http://") + (hosts ? kWorkstationIp : "localhost") + ":" + std::to_string(port);
+  setenv("ROS_MASTER_URI", uri.c_str(), 1);
+  if (!std::getenv("ROS_HOSTNAME") && !std::getenv("ROS_IP")) setenv("ROS_HOSTNAME", "localhost", 1);
+  pid_t master = spawn({"rosmaster", "--core", "-p", std::to_string(port)}, true);
+
+  ros::init(argc, argv, "bench_nodelet_chain", ros::init_options::NoSigintHandler);
+  for (int i = 0; i < 100 && !ros::master::check(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  if (!ros::master::check()) {
+    std::fprintf(stderr, "the ROS master did not start\n");
+    stop(master);
+    return 1;
+  }
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+
+  Figures manager = inOneManager();
+  Figures plain = inOneManagerPlain();
+  Figures processes = inSeparateProcesses("p");
+  Figures two_hosts;
+  if (hosts) two_hosts = inSeparateProcesses("r", std::string(hosts) + "-robot");
+
+  std::printf("1024x768 mono8 image (768 KiB) through %d imagenets/Grayscale block nodelets (they pass mono8 on);\n"
+              "%d topic hops (driver -> blocks -> driver); %d latency samples (one image in flight), %d images for\n"
+              "throughput (%d in flight). Per hop = end-to-end / %d.\n\n",
+              kBlocks, kHops, kLatencySamples, kThroughputMessages, kWindow, kHops);
+  // Columns: block nodelets in one manager, plain nodelets (ratio block / plain: the host's cost),
+  // one process per block (ratio processes / block), and with `hosts` the processes alternating
+  // between the two hosts (ratio two hosts / block).
+  std::printf("%-24s %14s %14s %8s %12s %8s", "", "block nodelets", "plain nodelets", "ratio", "processes", "ratio");
+  if (hosts) std::printf(" %12s %8s", "2 hosts", "ratio");
+  std::printf("\n");
+  auto row = [&](const char* label, double block, double hand, double procs, double across) {
+    std::printf("%-24s %14.1f %14.1f %7.2fx %12.1f %7.1fx", label, block, hand, hand > 0 ? block / hand : 0.0,
+                procs, block > 0 ? procs / block : 0.0);
+    if (hosts) std::printf(" %12.1f %7.1fx", across, block > 0 ? across / block : 0.0);
+    std::printf("\n");
+  };
+  auto at = [](const std::vector<double>& v, double p) { return percentile(v, p); };
+  auto hop = [](const std::vector<double>& e2e) {
+    std::vector<double> out;
+    for (double v : e2e) out.push_back(v / kHops);
+    return out;
+  };
+  for (double p : {0.5, 0.99}) {
+    const std::string label = p == 0.5 ? "median" : "p99";
+    row((label + " end-to-end (us)").c_str(), at(manager.latency_us, p), at(plain.latency_us, p),
+        at(processes.latency_us, p), at(two_hosts.latency_us, p));
+  }
+  for (double p : {0.5, 0.99}) {
+    const std::string label = p == 0.5 ? "median" : "p99";
+    row((label + " per hop (us)").c_str(), at(hop(manager.latency_us), p), at(hop(plain.latency_us), p),
+        at(hop(processes.latency_us), p), at(hop(two_hosts.latency_us), p));
+  }
+  auto per = [](double a, double b) { return b > 0 ? a / b : 0.0; };
+  std::printf("%-24s %14.1f %14.1f %7.2fx %12.1f %7.1fx", "throughput (images/s)", manager.throughput,
+              plain.throughput, per(plain.throughput, manager.throughput), processes.throughput,
+              per(manager.throughput, processes.throughput));
+  if (hosts) std::printf(" %12.1f %7.1fx", two_hosts.throughput, per(manager.throughput, two_hosts.throughput));
+  std::printf("\n%-24s %14s %14s %8s %12s %8s", "same object received", manager.same_pointer ? "yes" : "no",
+              plain.same_pointer ? "yes" : "no", "", processes.same_pointer ? "yes" : "no", "");
+  if (hosts) std::printf(" %12s", two_hosts.same_pointer ? "yes" : "no");
+  std::printf("\n%-24s %14d %14d %8s %12d %8s", "lost images", manager.lost, plain.lost, "", processes.lost, "");
+  if (hosts) std::printf(" %12d", two_hosts.lost);
+  std::printf("\n\nratio = block nodelets / plain nodelets (latency; the host's cost per hop, target <= 1.2x),\n"
+              "        plain / block (throughput); processes and 2 hosts ratios = them / block (latency),\n"
+              "        block / them (throughput). 2 hosts: every hop crosses the veth between two network\n"
+              "        namespaces (robot 10.77.0.1: blocks 1, 3, 5; workstation 10.77.0.2: driver, blocks 2, 4).\n");
+
+  spinner.stop();
+  ros::shutdown();
+  stop(master);
+  return 0;
+}

@@ -1,0 +1,31 @@
+// `imagenets validate NET`: load and check a net; OK or every load error. Exit 0 / 1.
+#include <iostream>
+
+#include "imagenets/tool/command.h"
+#include "imagenets/executor.h"
+
+namespace imagenets {
+namespace tool {
+namespace {
+
+int run(const Args& args) {
+  for (const auto& a : args) {
+    if (a.size() > 1 && a[0] == '-') throw unknownArgument(a);
+  }
+  if (args.size() != 1) throw UsageError("expects one net file");
+  try {
+    Executor executor(Net::loadFile(args[0]), ExecutorOptions{1});
+  } catch (const NetError& e) {
+    std::cout << e.what() << "\n";
+    return 1;
+  }
+  std::cout << "OK " << args[0] << "\n";
+  return 0;
+}
+
+}  // namespace
+
+IMAGENETS_TOOL_COMMAND(validate, "validate", "validate NET", "check a net file; prints OK or every error", run);
+
+}  // namespace tool
+}  // namespace imagenets
