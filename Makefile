@@ -3,7 +3,9 @@
 #   make test   build everything and run every test (gtest + rostest, via ctest)
 # Both install missing Debian packages first, then configure and build the repository as a catkin
 # workspace (one package per folder): CMake's files go to build/, the devel space (executables,
-# libraries, setup.bash) to devel/, as catkin_make does.
+# libraries, setup.bash) to devel/, as catkin_make does. A user who is not root needs no sudo once
+# the packages are installed; with some missing and no way to install them, deps prints the
+# apt-get line to run as root and stops before anything is built.
 
 # Debian's python must come first: catkin needs its ROS modules (a pyenv python has none).
 export PATH := /usr/bin:/bin:$(PATH)
