@@ -22,8 +22,13 @@ OUT ?= out/demo
 
 .PHONY: deps configure build tests test demo bench fuzz clean
 
+# Also stops when HOME cannot be written: npm (the Designer's page), ccache and ROS (logs, ~/.ros)
+# keep their files there, and would fail later, deep in the build or in every rostest.
 deps:
 	@scripts/install-deps
+	@[ -n "$$HOME" ] && [ -d "$$HOME" ] && [ -w "$$HOME" ] || { echo "make: HOME ($${HOME:-unset}) is not a \
+	writable folder: npm, ccache and ROS keep their caches and logs there. Give this user a home, or run \
+	e.g. HOME=\$$(mktemp -d) make $(MAKECMDGOALS)" >&2; exit 1; }
 
 # Configures once; again only when the build folder's devel space is not $(DEVEL) (older layout).
 # Without ROS_PACKAGE_PATH: catkin caches the environment the devel space adds (the tests run in

@@ -4,7 +4,7 @@ the package.xml files name resolves to Debian packages (scripts/install-deps --l
 package.xml files are the one list of dependencies; and what scripts/install-deps does for a user
 who is not root: with every package installed, nothing (no sudo needed); with a package missing
 and no way to install it, the exact apt-get line, and `make test` / `make demo` stop before
-building. Usage: packaging_test.py REPOSITORY."""
+building, as they do when HOME cannot be written. Usage: packaging_test.py REPOSITORY."""
 import os
 import pathlib
 import shutil
@@ -56,7 +56,7 @@ class Packaging(unittest.TestCase):
         self._dir.cleanup()
 
 
-class InstallDepsWithoutRoot(unittest.TestCase):
+class MakeAsAUserWhoIsNotRoot(unittest.TestCase):
     """A workspace of one package whose rosdep key resolves to PACKAGE (scripts/rosdep-debian.yaml
     plus one line), with the real Makefile and install-deps, run by a user who is not root (as root:
     user nobody, who owns the copy)."""
@@ -93,8 +93,8 @@ class InstallDepsWithoutRoot(unittest.TestCase):
                 os.chown(path, NOBODY, NOBODY)
         return self.ws
 
-    def run_as_user(self, argv, path=None):
-        env = {"PATH": path or "/usr/bin:/bin", "LANG": "C.UTF-8", "HOME": str(self.ws)}
+    def run_as_user(self, argv, path=None, home=None):
+        env = {"PATH": path or "/usr/bin:/bin", "LANG": "C.UTF-8", "HOME": home or str(self.ws)}
         return subprocess.run(self.prefix + argv, cwd=self.ws, env=env, capture_output=True, text=True, timeout=300)
 
     def assert_stops_with_the_apt_line(self, done, packages):
@@ -141,6 +141,18 @@ class InstallDepsWithoutRoot(unittest.TestCase):
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
         self.assertEqual(done.stderr, "")
         self.assertNotIn("install-deps", done.stdout)
+
+    def test_a_home_that_cannot_be_written_stops_before_building(self):
+        self.workspace("dpkg")
+        if subprocess.run(["dpkg-query", "-W", "ccache"], capture_output=True).returncode != 0:
+            self.skipTest("ccache is not installed here (an optional package install-deps adds)")
+        for home in ["/nonexistent", "/proc"]:
+            done = self.run_as_user(["make", "test"], home=home)
+            self.assertNotEqual(done.returncode, 0, done.stdout + done.stderr)
+            self.assertIn("make: HOME (%s) is not a writable folder: npm, ccache and ROS keep their caches" % home,
+                          done.stderr)
+            self.assertIn("HOME=$(mktemp -d) make test", done.stderr)
+            self.assertFalse((self.ws / "build").exists(), "make test went on to configure")
 
     def test_only_an_optional_package_missing_is_a_note(self):
         self.workspace(ABSENT, optional=ABSENT)
