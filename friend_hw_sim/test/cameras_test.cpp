@@ -1,7 +1,10 @@
 // The simulator's view rendering: the per-pose world cache gives the same image as a full render,
 // also when the world hides the marker, and bad scene files are reported clearly.
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+
+#include <unistd.h>
 
 #include <camera_calibration_parsers/parse.h>
 #include <gtest/gtest.h>
@@ -90,8 +93,14 @@ TEST(SimCameras, MarkerHiddenBehindABoxIsRenderedCorrectly) {
 }
 
 TEST(SimCameras, BadSceneFileNamesFileAndKey) {
-  const std::string path = "/tmp/friend_scene_bad.yaml";
-  std::ofstream(path) << "planes:\n  - {name: t, xyz: [0, 0], size: [1, 1]}\n";
+  // Unique per process: a fixed name in a shared /tmp may belong to another user's run.
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("friend_scene_bad_" + std::to_string(::getpid()) + ".yaml")).string();
+  {
+    std::ofstream file(path);
+    file << "planes:\n  - {name: t, xyz: [0, 0], size: [1, 1]}\n";
+    ASSERT_TRUE(file.good()) << "cannot write " << path;
+  }
   try {
     loadWorldScene(path);
     FAIL() << "expected an error";

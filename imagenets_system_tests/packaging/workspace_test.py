@@ -3,7 +3,10 @@
 catkin_make and installed (only the framework and what it needs: no FRIEND package, no Ceres),
 then, with the workspace's src/, build/ and devel/ moved away, used from the install space alone:
 `imagenets blocks`, `imagenets run` on a shipped net, a nodelet net from a launch file, the
-Designer page. Usage: workspace_test.py REPOSITORY."""
+Designer page. The repository may be a git checkout owned by another user (a folder mounted into a
+container) or no checkout at all (a source archive): the files copied are those git would list.
+Usage: workspace_test.py REPOSITORY."""
+import fnmatch
 import os
 import shutil
 import signal
@@ -24,16 +27,70 @@ def free_port():
         return s.getsockname()[1]
 
 
+def files_by_git(root):
+    """The repository's files as git lists them (tracked, and new ones not ignored), or None where
+    git cannot say (no git, no checkout). safe.directory: the checkout may belong to another user."""
+    try:
+        done = subprocess.run(["git", "-c", "safe.directory=" + root, "-C", root, "ls-files", "-z", "--cached",
+                               "--others", "--exclude-standard"], capture_output=True)
+    except FileNotFoundError:
+        return None
+    if done.returncode != 0:
+        return None
+    files = [f for f in done.stdout.decode().split("\0") if f]
+    return [f for f in files if os.path.lexists(os.path.join(root, f))]  # not those deleted in the tree
+
+
+def files_by_walking(root):
+    """The files git would list, without git: every file except .git (a folder, or a file in a
+    worktree) and what the .gitignore files exclude (their simple patterns: `/anchored`, `folder/`,
+    `*.glob`)."""
+    rules = []  # (folder of the .gitignore, pattern, anchored, folders only)
+    found = []
+    for folder, dirs, files in os.walk(root):
+        rel = os.path.relpath(folder, root)
+        rel = "" if rel == "." else rel
+        if ".gitignore" in files:
+            with open(os.path.join(folder, ".gitignore")) as f:
+                for line in f:
+                    line = line.strip()
+                    if line and not line.startswith("#"):
+                        rules.append((rel, line.strip("/"), line.startswith("/"), line.endswith("/")))
+
+        def ignored(name, is_dir):
+            path = os.path.join(rel, name)
+            for base, pattern, anchored, dirs_only in rules:
+                if (dirs_only and not is_dir) or not (base == "" or path.startswith(base + "/")):
+                    continue
+                inside = path[len(base) + 1:] if base else path
+                if fnmatch.fnmatch(inside if anchored else name, pattern):
+                    return True
+            return False
+
+        dirs[:] = sorted(d for d in dirs if d != ".git" and not ignored(d, True))
+        found += [os.path.join(rel, f) for f in sorted(files) if f != ".git" and not ignored(f, False)]
+    return found
+
+
+class CopiedFiles(unittest.TestCase):
+    def test_without_git_the_same_files_are_copied(self):
+        by_git = files_by_git(ROOT)
+        if by_git is None:
+            self.skipTest("not a git checkout here: nothing to compare the walk with")
+        by_walking = files_by_walking(ROOT)
+        self.assertEqual(sorted(set(by_walking) - set(by_git)), [], "copied without git, not by git")
+        self.assertEqual(sorted(set(by_git) - set(by_walking)), [], "copied by git, not without it")
+
+
 class InstalledWorkspace(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.ws = tempfile.mkdtemp(prefix="imagenets_ws_")
         src = os.path.join(cls.ws, "src", "imagenets")
-        files = subprocess.run(["git", "-C", ROOT, "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
-                               check=True, capture_output=True).stdout.decode().split("\0")
-        for f in filter(None, files):
-            if not os.path.isfile(os.path.join(ROOT, f)):
-                continue  # deleted in the working tree
+        files = files_by_git(ROOT)
+        if files is None:
+            files = files_by_walking(ROOT)
+        for f in files:
             os.makedirs(os.path.dirname(os.path.join(src, f)), exist_ok=True)
             shutil.copy2(os.path.join(ROOT, f), os.path.join(src, f), follow_symlinks=False)
         cls.install = os.path.join(cls.ws, "install")

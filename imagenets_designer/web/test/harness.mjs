@@ -85,8 +85,10 @@ export async function launchBrowser() {
   return puppeteer.launch({
     executablePath: chromium,
     headless: true,
-    // WebGL in headless chromium without a GPU: SwiftShader through ANGLE.
-    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--window-size=1600,1000'],
+    // WebGL in headless chromium without a GPU: SwiftShader through ANGLE. Shared memory in /tmp:
+    // a container's /dev/shm (64 MB in Docker) is too small for the page's frames and crashes tabs.
+    args: ['--no-sandbox', '--disable-dev-shm-usage', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+      '--window-size=1600,1000'],
     protocolTimeout: 180000,
   });
 }
