@@ -1,4 +1,4 @@
-// `imagenets accuracy-study`: the calibration's accuracy over many random TRUE robots (issue 15),
+// `imagenets accuracy-study`: the calibration's accuracy over many random TRUE robots,
 // against the simulator. For each seed the simulator is switched live to another true robot
 // (friend_sim/set_true_robot: the random error of true_error.yaml's magnitudes times --magnitude),
 // the calibration node calibrates it, and the result is compared with the simulator's truth (the

@@ -1,4 +1,4 @@
-// Designer benchmark (issue 14): in the real browser, the time from a property change on a
+// Designer benchmark: in the real browser, the time from a property change on a
 // 1024x768 image chain to the updated preview on screen, over 50 changes, next to the executor's
 // own run time for the same change (the `finished` events' last_ms of the blocks that re-ran).
 // Usage: node bench/designer_preview.mjs   (IMAGENETS_BIN: the built `imagenets`)

@@ -1,4 +1,4 @@
-// Executor overhead, parallel speed-up and feedback sweep strategies (issues 2 and 3).
+// Executor overhead, parallel speed-up and feedback sweep strategies.
 // Prints figures; passes or fails nothing.
 #include <chrono>
 #include <cstdio>

@@ -99,7 +99,10 @@ int run(const Args& args) {
   }
   const auto summary = marker::summarize(rows);
   writeAtomically(out_dir + "/study.csv", marker::toCsv(rows));
-  const std::string table = marker::toMarkdown(summary, config) + "\nOur nets (`detect`: the default, `calibration`) beside libapriltag, with issue 15's targets:\n\n" +
+  const std::string table = marker::toMarkdown(summary, config) +
+                            "\nOur nets (`detect`: the default, `calibration`) beside libapriltag, with the study's targets "
+                            "(detection rate at least libapriltag's, median position error at most half of "
+                            "libapriltag's):\n\n" +
                             marker::sideBySideMarkdown(summary);
   writeAtomically(out_dir + "/summary.md", table);
   if (!(scale_mm > 0)) {

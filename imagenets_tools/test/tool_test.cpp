@@ -135,8 +135,8 @@ TEST(Tool, RunWritesTheFeedbackTrace) {
 }
 
 TEST(Tool, DetectByDefaultFindsTheMarkerInADimSceneThatThePapersRangeMisses) {
-  // Illumination 18 %, dark wall (issue 15): the paper is darker than 40, so every threshold of the
-  // paper's 40..80 merges the black border with the margin and the wall (docs/marker-study.md).
+  // Illumination 18 %, dark wall: the paper is darker than 40, so every threshold of the
+  // paper's 40..80 merges the black border with the margin and the wall (docs/markers.md).
   const std::string dir = temp("dim_scene");
   Result r = tool("run config/nets/marker_image_generation.yaml --quiet --set render.illumination=0.18 "
                   "--set render.background=0.1 --set render.tilt=0 --set render.supersampling=2 --output-dir " + dir);

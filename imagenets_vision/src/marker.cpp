@@ -435,7 +435,7 @@ std::pair<double, double> sideRange(const std::vector<cv::Point2d>& quad) {
 }
 // A blurred match counts from this confidence on, even where the sharp one needs less: the marker
 // matches at >= 0.83, other patterns at up to 0.59 (random ones <= 0.55), and other dark
-// quadrilaterals of the calibration's scenes at 0.60 (docs/calibration.md).
+// quadrilaterals of the calibration's scenes at 0.60 (docs/markers.md).
 constexpr double kBlurredMatchMinConfidence = 0.7;
 
 // What the blurred match compares the samples with: the marker (border, pattern, margin) at

@@ -56,7 +56,7 @@ class AccuracyStudyTest(unittest.TestCase):
             # Millimetres against this robot's truth: had the images stayed with the previous true
             # robot, the error would be the tens of millimetres between the two robots' mounts.
             self.assertLess(float(r["effective_error_mm"]), 10.0, r)
-            # Issue 15's accuracy target, against what images of the arm's marker can determine
+            # The calibration's accuracy target (0.5 mm), against what images of the arm's marker can determine
             # (0.12 and 0.17 mm seen at 3 loops).
             self.assertLess(float(r["identifiable_error_mm"]), 0.5, r)
             self.assertGreater(float(r["bound3_mm"]), 0.0, r)

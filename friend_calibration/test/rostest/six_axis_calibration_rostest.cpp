@@ -1,6 +1,6 @@
 // rostest: the calibration node and its nets calibrate a second robot that exists only as a URDF
 // (config/six_axis: 6-joint arm, its own pan-tilt head and marker place) in the simulator, given
-// nothing but its description: within issue 15's targets (0.5 mm / 0.05 deg, joint method,
+// nothing but its description: within the calibration's accuracy targets (0.5 mm / 0.05 deg, joint method,
 // redundancy 5) against the simulator's truth, for the shipped true robot and for a random one of
 // its own 6 + 2 joint offsets; and the calibrated URDF it writes is the robot's own URDF (its link
 // names) that robot_state_publisher loads as it is; an uncertainty target is met on it too.
@@ -22,7 +22,8 @@
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-// Issue 15's targets for one calibration (joint method, redundancy 5).
+// The calibration's accuracy targets for one calibration (joint method, redundancy 5;
+// docs/calibration-studies.md).
 constexpr double kTargetMm = 0.5, kTargetDeg = 0.05;
 
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) { return imagenets::frames::toIsometry(t, "transform"); }

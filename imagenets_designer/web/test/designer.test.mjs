@@ -1,4 +1,4 @@
-// The Designer in a real browser (issue 14 "Tests"): Debian's chromium, driven by puppeteer-core,
+// The Designer in a real browser, as docs/designer.md describes it: Debian's chromium, driven by puppeteer-core,
 // on the real `imagenets designer`. Everything is done as a user does it, with mouse and keyboard;
 // counts and states are the server's (shown on the nodes), and the saved file is checked by the
 // engine itself (`imagenets validate`, `imagenets run`).

@@ -1,5 +1,5 @@
 // A reduced marker study (--quick: 12 views per condition) that guards the accuracy targets: the
-// paper's two conditions, and the harder ones of issue 15 against libapriltag.
+// paper's two conditions, and the harder ones against libapriltag.
 #include <gtest/gtest.h>
 
 #include <algorithm>

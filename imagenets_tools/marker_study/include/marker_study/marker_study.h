@@ -9,7 +9,7 @@
 //
 // A condition gives the range of each imaging parameter; every view draws its own values from the
 // ranges (seeded, the same for the three methods). The paper's conditions are `even` (its lighting)
-// and `varying` (an illumination that changes from image to image); the harder ones (issue 15)
+// and `varying` (an illumination that changes from image to image); the harder ones
 // take the marker out to 1.5 m, blur it up to 2 px, add noise up to 6 gray levels and dim the scene
 // down to 15 %, one at a time and all together, also in front of a dark wall.
 //
@@ -88,7 +88,7 @@ std::vector<StudyRow> runStudy(const StudyConfig& config,
 // One row per condition and method, conditions in the order they first appear.
 std::vector<StudySummaryRow> summarize(const std::vector<StudyRow>& rows);
 
-// The targets of issue 15, per condition and for each of our two nets (`detect`, `calibration`):
+// The study's targets, per condition and for each of our two nets (`detect`, `calibration`):
 // it finds at least as many markers as libapriltag and its median position error is at most half
 // of libapriltag's.
 struct TargetCheck {
