@@ -3,7 +3,9 @@
 #   make test   build everything and run every test (gtest + rostest, via ctest)
 # Both install missing Debian packages first, then configure and build the repository as a catkin
 # workspace (one package per folder): CMake's files go to build/, the devel space (executables,
-# libraries, setup.bash) to devel/, as catkin_make does.
+# libraries, setup.bash) to devel/, as catkin_make does. A user who is not root needs no sudo once
+# the packages are installed; with some missing and no way to install them, deps prints the
+# apt-get line to run as root and stops before anything is built.
 
 # Debian's python must come first: catkin needs its ROS modules (a pyenv python has none).
 export PATH := /usr/bin:/bin:$(PATH)
@@ -20,8 +22,13 @@ OUT ?= out/demo
 
 .PHONY: deps configure build tests test demo bench fuzz clean
 
+# Also stops when HOME cannot be written: npm (the Designer's page), ccache and ROS (logs, ~/.ros)
+# keep their files there, and would fail later, deep in the build or in every rostest.
 deps:
 	@scripts/install-deps
+	@[ -n "$$HOME" ] && [ -d "$$HOME" ] && [ -w "$$HOME" ] || { echo "make: HOME ($${HOME:-unset}) is not a \
+	writable folder: npm, ccache and ROS keep their caches and logs there. Give this user a home, or run \
+	e.g. HOME=\$$(mktemp -d) make $(MAKECMDGOALS)" >&2; exit 1; }
 
 # Configures once; again only when the build folder's devel space is not $(DEVEL) (older layout).
 # Without ROS_PACKAGE_PATH: catkin caches the environment the devel space adds (the tests run in

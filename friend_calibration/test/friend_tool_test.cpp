@@ -9,35 +9,19 @@
 #include <boost/filesystem.hpp>
 #include <gtest/gtest.h>
 
+#include "imagenets/testing/command_runner.h"
+
 namespace {
 
-struct Result {
-  int status;
-  std::string output;
-};
+using imagenets::testing::expectContains;
+using Result = imagenets::testing::CommandResult;
 
-// Runs `imagenets ARGS` in a shell, in this package's folder; returns exit status and stdout+stderr
-// (only stdout with stdout_only).
+// `imagenets ARGS`, run in this package's folder.
 Result tool(const std::string& args, bool stdout_only = false) {
-  const std::string cmd = std::string(IMAGENETS_TOOL) + " " + args + (stdout_only ? " 2>/dev/null" : " 2>&1");
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-  int status = pclose(pipe);
-  return {WEXITSTATUS(status), out};
+  return imagenets::testing::runCommand(IMAGENETS_TOOL, args, stdout_only);
 }
 
-void expectContains(const std::string& text, const std::string& part) {
-  EXPECT_NE(text.find(part), std::string::npos) << "missing \"" << part << "\" in:\n" << text;
-}
-
-std::string temp(const std::string& name) {
-  auto dir = boost::filesystem::temp_directory_path() / ("imagenets_tool_test_" + std::to_string(getpid()));
-  boost::filesystem::create_directories(dir);
-  return (dir / name).string();
-}
+std::string temp(const std::string& name) { return imagenets::testing::tempPath(name); }
 
 }  // namespace
 

@@ -1,6 +1,6 @@
 // friend_urdf: prints the URDF of the FRIEND robot generated from its DH description (of a robot
 // with its own URDF, e.g. config/six_axis: that URDF, robot_description::writeUrdf), for the
-// robot_description parameter (launch: <param name="robot_description" command="rosrun imagenets
+// robot_description parameter (launch: <param name="robot_description" command="rosrun friend_hw_sim
 // friend_urdf --true-error ..."/>).
 //   friend_urdf [--description robot.yaml] [--true-error true_error.yaml] [--seed N] [--magnitude K] [--name NAME]
 #include <iostream>
@@ -12,7 +12,7 @@
 #include "imagenets/package_file.h"
 
 int main(int argc, char** argv) {
-  std::string description = imagenets::packageFile("friend_description", "config/robot.yaml"), error_file, name = "friend";
+  std::string description = imagenets::packageFile("friend_description", "config/robot.yaml"), error_file, name;
   int seed = -1;
   double magnitude = 1.0;
   try {

@@ -338,7 +338,7 @@ std::string calibratedUrdf(const RobotModel& nominal, const StoredCalibration& c
     }
   }
   if (!any) note << " none";
-  return robot_description::writeUrdf(d, calibrated.description(), "friend", note.str());
+  return robot_description::writeUrdf(d, calibrated.description(), d.name, note.str());
 }
 
 void saveCalibratedUrdf(const RobotModel& nominal, const StoredCalibration& c, const std::string& path) {

@@ -257,14 +257,15 @@ Figures inSeparateProcesses(const std::string& prefix, const std::string& robot_
   return f;
 }
 
-// As root: makes the two hosts and runs this benchmark again on the workstation (which then
-// measures everything, the two-host chain included); removes the hosts when it ends. Returns false
-// (and says why) when it cannot: the benchmark then runs on one host only.
+// Where two network namespaces can be made (as root, not in a chroot or an unprivileged container):
+// makes the two hosts and runs this benchmark again on the workstation (which then measures
+// everything, the two-host chain included); removes the hosts when it ends. Returns false (and
+// `two-hosts check` says why) when it cannot: the benchmark then runs on one host only.
 bool runOnTwoHosts(char** argv, int* status) {
   if (std::getenv("IMAGENETS_BENCH_HOSTS")) return false;  // already on the workstation
   const std::string two_hosts = std::string(IMAGENETS_SOURCE_DIR) + "/scripts/two-hosts";
   if (std::system((two_hosts + " check").c_str()) != 0) {
-    std::printf("(two hosts not measured: network namespaces need root)\n\n");
+    std::printf("(two hosts not measured: two network namespaces cannot be made here, see above)\n\n");
     return false;
   }
   const std::string id = "imagenets-bench-" + std::to_string(getpid());

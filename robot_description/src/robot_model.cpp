@@ -224,6 +224,7 @@ RobotDescription loadRobotDescription(const std::string& path) {
   RobotDescription d;
   d.source = path;
   try {
+    if (root["name"]) d.name = root["name"].as<std::string>();
     if (root["base_frame"]) d.base_frame = root["base_frame"].as<std::string>();
     const YAML::Node arm = need(root, "arm", w);
     d.arm = chain(arm, w + ": arm");

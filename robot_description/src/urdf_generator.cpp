@@ -120,7 +120,7 @@ std::string generateUrdf(const RobotDescription& d, const std::string& robot_nam
     for (size_t at = text.find("--"); at != std::string::npos; at = text.find("--", at)) text.replace(at, 2, "- -");
     o << "<!--\n" << text << (text.back() == '\n' ? "" : "\n") << "-->\n";
   }
-  o << "<robot name=\"" << robot_name << "\">\n";
+  o << "<robot name=\"" << (robot_name.empty() ? d.name : robot_name) << "\">\n";
   o << "  <material name=\"chair_blue\"><color rgba=\"0.2 0.3 0.6 1\"/></material>\n";
   o << "  <material name=\"arm_silver\"><color rgba=\"0.75 0.75 0.8 1\"/></material>\n";
   o << "  <material name=\"joint_grey\"><color rgba=\"0.35 0.35 0.4 1\"/></material>\n";

@@ -58,7 +58,8 @@ namespace {
 bool isHelp(const std::string& arg) { return arg == "-h" || arg == "--help"; }
 
 // Folders searched for `imagenets-NAME` programs: the one the program was started from (e.g. a
-// workspace's bin/), the running program's own, then PATH.
+// workspace's bin/), the running program's own and its workspace's bin/ (catkin puts a package's
+// programs in lib/PACKAGE/, the commands' links in bin/), then PATH.
 std::string started_from;  // argv[0]
 
 std::vector<std::string> programFolders() {
@@ -68,7 +69,10 @@ std::vector<std::string> programFolders() {
   }
   std::error_code ec;
   const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) dirs.push_back(self.parent_path().string());
+  if (!ec) {
+    dirs.push_back(self.parent_path().string());
+    dirs.push_back((self.parent_path().parent_path().parent_path() / "bin").string());
+  }
   const char* path = std::getenv("PATH");
   std::stringstream list(path ? path : "");
   for (std::string dir; std::getline(list, dir, ':');) {

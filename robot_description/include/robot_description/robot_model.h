@@ -110,6 +110,7 @@ struct FixedFrame {
 
 struct RobotDescription {
   std::string source;  // file it was loaded from (for messages)
+  std::string name = "robot";  // the robot's name (key `name`): the generated URDF's <robot name>
   std::string base_frame = "base_link";
   KinematicChain arm, head;
   FixedFrame tool;         // arm last link -> TCP

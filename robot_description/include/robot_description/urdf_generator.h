@@ -15,7 +15,8 @@ namespace robot_description {
 // Tz(d) Tx(a) Rx(alpha)) to link i, so TF of link i equals the chain's frame i exactly.
 // `note`: lines put in a comment at the top (e.g. what a calibration changed); "--" is not allowed
 // in an XML comment and is written as "- -".
-std::string generateUrdf(const RobotDescription& description, const std::string& robot_name = "friend",
+// `robot_name`: "" = the description's name.
+std::string generateUrdf(const RobotDescription& description, const std::string& robot_name = "",
                          const std::string& note = "");
 
 }  // namespace robot_description
