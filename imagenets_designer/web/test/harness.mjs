@@ -92,10 +92,10 @@ export async function launchBrowser() {
 }
 
 // A page on the designer that fails the test on any page error; resolves once the net is shown.
-export async function openDesigner(browser, url, beforeLoad = async () => {}) {
+export async function openDesigner(browser, url, beforeLoad = async () => {}, viewport = { width: 1600, height: 1000 }) {
   const page = await browser.newPage();
   await beforeLoad(page);
-  await page.setViewport({ width: 1600, height: 1000 });
+  await page.setViewport(viewport);
   page.errors = [];
   page.logs = [];
   page.on('pageerror', (e) => page.errors.push(e.message));
