@@ -1,7 +1,6 @@
 // rostest: the simulator's trajectory controllers, through plain actionlib clients.
 #include <cmath>
 #include <functional>
-#include <mutex>
 
 #include <actionlib/client/simple_action_client.h>
 #include <control_msgs/FollowJointTrajectoryAction.h>
@@ -11,6 +10,7 @@
 
 #include "friend_msgs/MoveJointsAction.h"
 #include "imagenets/calling_thread_queue.h"
+#include "imagenets/testing/rostest_util.h"
 
 namespace {
 
@@ -24,37 +24,21 @@ constexpr double kDeg = M_PI / 180.0;
 const std::vector<std::string> kArm{"arm_joint_1", "arm_joint_2", "arm_joint_3", "arm_joint_4",
                                     "arm_joint_5", "arm_joint_6", "arm_joint_7"};
 
+// The simulator's newest joint state.
 class JointStates {
  public:
-  JointStates() { sub_ = nh_.subscribe("joint_states", 10, &JointStates::cb, this); }
+  // Position of `name` (NaN before the first message or for a joint it does not name).
   double position(const std::string& name) {
-    std::lock_guard<std::mutex> lock(m_);
-    for (size_t i = 0; i < last_.name.size(); ++i)
-      if (last_.name[i] == name) return last_.position[i];
+    const auto m = latest_.get();
+    for (size_t i = 0; m && i < m->name.size(); ++i)
+      if (m->name[i] == name) return m->position[i];
     return NAN;
   }
-  // Waits for a message published after now (so it reflects what the servers just reported).
-  bool waitFresh() {
-    const ros::Time now = ros::Time::now();
-    for (int i = 0; i < 3000; ++i) {
-      {
-        std::lock_guard<std::mutex> lock(m_);
-        if (last_.header.stamp > now) return true;
-      }
-      ros::WallDuration(0.01).sleep();
-    }
-    return false;
-  }
+  // Waits for a message stamped after now (so it reflects what the servers just reported).
+  bool waitFresh() { return latest_.waitFrom(ros::Time::now() + ros::Duration(0, 1), 30.0) != nullptr; }
 
  private:
-  void cb(const sensor_msgs::JointState& m) {
-    std::lock_guard<std::mutex> lock(m_);
-    last_ = m;
-  }
-  ros::NodeHandle nh_;
-  std::mutex m_;
-  sensor_msgs::JointState last_;
-  ros::Subscriber sub_;  // last: destroyed first
+  LatestMessage<sensor_msgs::JointState> latest_{"joint_states"};
 };
 
 trajectory_msgs::JointTrajectoryPoint point(double t, std::vector<double> deg, std::vector<double> vel = {}) {

@@ -6,7 +6,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { LONG, copyConfig, launchBrowser, openDesigner, run, startDesigner, tempDir, until, imagenets } from './harness.mjs';
+import { LONG, copyConfig, designerOnNetCopy, launchBrowser, openDesigner, run, startDesigner, tempDir, until, imagenets } from './harness.mjs';
 import {
   allStats, blockNames, boxSelectAll, centreOf, click, connect, drag, dragBlock, link, dragBlockIn, newBlock, linkIds, message, nodeSel,
   openFile, select, setProperty, stats, watch, zoom,
@@ -378,11 +378,7 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
 });
 
 test('the 3D view draws the stereo point cloud', { timeout: 300000 }, async (t) => {
-  const dir = tempDir('3d');
-  const config = copyConfig(dir);
-  const designer = await startDesigner({ net: path.join(config, 'nets/stereo_point_cloud.yaml') });
-  t.after(() => designer.stop());
-  const page = await openDesigner(browser, designer.url);
+  const { page } = await designerOnNetCopy(t, browser, '3d', 'stereo_point_cloud.yaml');
   await page.waitForSelector('.react-flow__node', { timeout: LONG });
   const cloudPort = await until('a PointCloud2 output', () => page.evaluate(() => {
     const handle = [...document.querySelectorAll('.react-flow__handle.source')]
@@ -602,11 +598,7 @@ test('another net opened shows nothing of the last; an opened net cleared with t
 });
 
 test('feedback is a dashed edge from its score, moved by dragging', { timeout: 300000 }, async (t) => {
-  const dir = tempDir('feedback');
-  const config = copyConfig(dir);
-  const designer = await startDesigner({ net: path.join(config, 'nets/feedback_threshold.yaml') });
-  t.after(() => designer.stop());
-  const page = await openDesigner(browser, designer.url);
+  const { page } = await designerOnNetCopy(t, browser, 'feedback', 'feedback_threshold.yaml');
   await page.waitForSelector(nodeSel('threshold'), { timeout: LONG });
   const yaml = () => page.$eval('[data-testid="yaml"]', (y) => y.value);
   const feedbackEdge = '.react-flow__edge[data-id="feedback:threshold"]';
@@ -655,11 +647,7 @@ test('feedback is a dashed edge from its score, moved by dragging', { timeout: 3
 });
 
 test('the data window stays open beside the properties, resizes and shows each run', { timeout: 300000 }, async (t) => {
-  const dir = tempDir('window');
-  const config = copyConfig(dir);
-  const designer = await startDesigner({ net: path.join(config, 'nets/threshold_demo.yaml') });
-  t.after(() => designer.stop());
-  const page = await openDesigner(browser, designer.url);
+  const { page } = await designerOnNetCopy(t, browser, 'window', 'threshold_demo.yaml');
   await page.waitForSelector(nodeSel('threshold'), { timeout: LONG });
   await click(page, '[data-testid="run"]');
   await untilStats(page, 'the net ran', (s) => s.threshold.status === 'ok');
@@ -762,11 +750,7 @@ test('on a 1366x768 screen a fitted net is readable and the minimap covers no no
 });
 
 test('the 3D view names the frames and objects of a scene, over a grid and axes in metres', { timeout: 300000 }, async (t) => {
-  const dir = tempDir('scene');
-  const config = copyConfig(dir);
-  const designer = await startDesigner({ net: path.join(config, 'nets/scene_3d.yaml') });
-  t.after(() => designer.stop());
-  const page = await openDesigner(browser, designer.url);
+  const { page } = await designerOnNetCopy(t, browser, 'scene', 'scene_3d.yaml');
   await page.waitForSelector(nodeSel('scene'), { timeout: LONG });
   await click(page, '[data-testid="run"]');
   await untilStats(page, 'the scene joined', (s) => s.scene.status === 'ok');

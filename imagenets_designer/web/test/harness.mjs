@@ -81,6 +81,14 @@ export async function startDesigner({ net, roots = [] } = {}) {
   };
 }
 
+// The Designer on a copy of config/nets/NET (stopped when test `t` ends), and a page on it.
+export async function designerOnNetCopy(t, browser, prefix, net) {
+  const config = copyConfig(tempDir(prefix));
+  const designer = await startDesigner({ net: path.join(config, 'nets', net) });
+  t.after(() => designer.stop());
+  return { config, designer, page: await openDesigner(browser, designer.url) };
+}
+
 export async function launchBrowser() {
   return puppeteer.launch({
     executablePath: chromium,
