@@ -50,10 +50,21 @@ export async function connect(page, from, to) {
   await page.mouse.up();
 }
 
-// Links as a user does: drag, then see the link drawn before going on.
+// Links as a user does: drag, then see the link drawn before going on; a drag that missed (the
+// canvas still settling after an edit moved a handle) is made again, as a user would.
 export async function link(page, from, to) {
+  const linked = async () => (await linkIds(page)).includes(`${from}->${to}`);
+  for (let attempt = 1; attempt < 3; ++attempt) {
+    await connect(page, from, to);
+    try {
+      await until(`the link ${from} -> ${to}`, linked, 10000);
+      return;
+    } catch {
+      // dragged again below
+    }
+  }
   await connect(page, from, to);
-  await until(`the link ${from} -> ${to}`, async () => (await linkIds(page)).includes(`${from}->${to}`));
+  await until(`the link ${from} -> ${to}`, linked);
 }
 
 // The links' edges (a feedback's dashed edge, `feedback:BLOCK`, is no link).
