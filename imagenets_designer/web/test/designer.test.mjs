@@ -350,6 +350,9 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
     const file = path.join(dir, 'drawn.yaml');
     await click(page, '[data-testid="save-as"]');
     const field = await page.waitForSelector('[data-testid="file-path"]', { timeout: LONG });
+    // Save as lists the folders it may write to, as Open does.
+    await page.waitForSelector('[data-testid="file-roots"] .file-root', { timeout: LONG });
+    assert.ok((await page.$$eval('.file-root', (rs) => rs.map((r) => r.dataset.root))).includes(fs.realpathSync(dir)));
     await field.evaluate((i) => i.select());
     await page.keyboard.type(file);
     await click(page, '[data-testid="file-ok"]');
@@ -605,6 +608,14 @@ test('feedback is a dashed edge from its score, moved by dragging', { timeout: 3
   const label = () => page.$eval('.feedback-edge-label[data-block="threshold"]', (l) => l.textContent);
   await page.waitForSelector(feedbackEdge, { timeout: LONG });
   assert.equal(await label(), 'feedback: threshold (max quality.score)');
+  // The label is seen whole: no block covers any corner of it.
+  const covered = await page.$eval('.feedback-edge-label[data-block="threshold"]', (l) => {
+    const r = l.getBoundingClientRect();
+    return [[r.left + 2, r.top + 2], [r.right - 2, r.top + 2], [r.left + 2, r.bottom - 2], [r.right - 2, r.bottom - 2]]
+      .map(([x, y]) => document.elementFromPoint(x, y))
+      .filter((e) => !e || !l.contains(e)).map((e) => (e ? e.className : 'nothing'));
+  });
+  assert.deepEqual(covered, []);
 
   // A second score, and the feedback's score port dragged onto the block's feedback handle.
   const canvas = await (await page.$('.canvas')).boundingBox();
