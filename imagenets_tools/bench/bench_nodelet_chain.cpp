@@ -2,7 +2,10 @@
 // manager (messages pass by pointer), versus the same chain as 5 plain hand-written nodelets in
 // one manager (no BlockNodelet host: subscribe, publish the same pointer), versus the block chain
 // as 5 separate processes (TCPROS). Prints median and p99 latency, end to end and per hop, and
-// throughput, side by side with their ratios: the host's cost per hop is block / plain. As root,
+// throughput, side by side with their ratios: the host's cost per hop is block / plain. The block
+// and plain chains are loaded together and measured in alternation over several rounds (wall-clock
+// throughput swings with the machine's load; the median of the rounds' ratios, their spread and
+// the CPU time per image say how far to trust it). As root,
 // also the block chain as 5 processes on two hosts (network namespaces made by scripts/two-hosts:
 // blocks 1, 3, 5 on the "robot", the driver and blocks 2, 4 on the "workstation"), so every hop
 // crosses the veth between them: the price of splitting a net over machines (docs/launch.md).
@@ -11,6 +14,7 @@
 // The blocks are imagenets/Grayscale fed a mono8 image, which they pass on unchanged (by pointer),
 // so the figures are the cost of the links themselves, not of image processing.
 #include <errno.h>
+#include <time.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -18,6 +22,7 @@
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
+#include <memory>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
@@ -35,8 +40,9 @@ namespace {
 constexpr int kBlocks = 5;
 constexpr int kHops = kBlocks + 1;  // driver -> block 1 -> ... -> block 5 -> driver
 constexpr int kLatencySamples = 300;
-constexpr int kThroughputMessages = 500;
+constexpr int kThroughputMessages = 2000;
 constexpr int kWindow = 2;  // messages in flight during the throughput run
+constexpr int kRounds = 10;  // block and plain chains measured in alternation
 constexpr const char* kRobotIp = "10.77.0.1";  // scripts/two-hosts
 constexpr const char* kWorkstationIp = "10.77.0.2";
 
@@ -74,7 +80,8 @@ void stop(pid_t pid) {
 
 struct Figures {
   std::vector<double> latency_us;  // end to end, one message in flight
-  double throughput = 0.0;         // messages per second with kWindow in flight
+  std::vector<double> throughput;  // messages per second with kWindow in flight, one per round
+  std::vector<double> cpu_us;      // this process's CPU time per image in those runs, one per round
   int lost = 0;
   bool same_pointer = false;       // the image came back as the object sent
 };
@@ -84,6 +91,15 @@ double percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());
   size_t i = static_cast<size_t>(p * (v.size() - 1) + 0.5);
   return v[std::min(i, v.size() - 1)];
+}
+
+// All threads of this process (driver, spinner, both managers' workers): while one chain runs the
+// other waits idle, so what one run adds is that chain's cost. Far steadier than wall time on a
+// machine that is not idle.
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + t.tv_nsec * 1e-9;
 }
 
 // Sends images into `in_topic` and times their arrival on `out_topic`.
@@ -101,32 +117,38 @@ class Driver {
     image_->data.assign(1024 * 768, 128);
   }
 
-  Figures run() {
-    Figures f;
-    // Warm up: until images make it through the whole chain (connections are set up lazily).
+  // Until images make it through the whole chain (connections are set up lazily).
+  void warmUp() {
     int warm = 0;
     for (int i = 0; i < 200 && warm < 20; ++i) warm += sendAndWait(0.5) >= 0 ? 1 : 0;
     if (warm == 0) {
       std::fprintf(stderr, "no image came through the chain\n");
       std::exit(1);
     }
-    for (int i = 0; i < kLatencySamples; ++i) {
+  }
+
+  void latency(int samples, Figures* f) {
+    for (int i = 0; i < samples; ++i) {
       double us = sendAndWait(2.0);
-      if (us < 0) ++f.lost;
-      else f.latency_us.push_back(us);
+      if (us < 0) ++f->lost;
+      else f->latency_us.push_back(us);
     }
-    f.same_pointer = last_same_pointer_;
-    // Throughput: keep kWindow images in flight.
+    f->same_pointer = last_same_pointer_;
+  }
+
+  // Keeps kWindow images in flight until `messages` came back (or were given up on).
+  void throughput(int messages, Figures* f) {
     const auto start = Clock::now();
+    const double cpu_start = processCpuSeconds();
     int sent = 0, done_before;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       done_before = received_;
     }
-    while (sent < kThroughputMessages) {
+    while (sent < messages) {
       std::unique_lock<std::mutex> lock(mutex_);
       if (!cv_.wait_for(lock, std::chrono::seconds(2), [&] { return sent - (received_ - done_before) < kWindow; })) {
-        ++f.lost;
+        ++f->lost;
         done_before -= 1;  // give up on one message in flight
         continue;
       }
@@ -137,7 +159,18 @@ class Driver {
     std::unique_lock<std::mutex> lock(mutex_);
     cv_.wait_for(lock, std::chrono::seconds(2), [&] { return received_ - done_before >= sent; });
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    f.throughput = (received_ - done_before) / seconds;
+    const int done = received_ - done_before;
+    f->throughput.push_back(done / seconds);
+    f->cpu_us.push_back(done > 0 ? (processCpuSeconds() - cpu_start) * 1e6 / done : 0.0);
+  }
+
+  Figures run(int rounds = 1) {
+    Figures f;
+    warmUp();
+    for (int r = 0; r < rounds; ++r) {
+      latency(kLatencySamples / rounds, &f);
+      throughput(kThroughputMessages / rounds, &f);
+    }
     return f;
   }
 
@@ -203,9 +236,9 @@ class PlainPass : public nodelet::Nodelet {
   ros::Subscriber sub_;
 };
 
-// The chain of `type` nodelets named /<prefix>1.. in `manager` (this process: driver and nodelets
-// share it), timed end to end.
-Figures chainInOneManager(nodelet::Loader& manager, const std::string& type, const std::string& prefix) {
+// Loads the chain of `type` nodelets named /<prefix>1.. in `manager` (this process: driver and
+// nodelets share it) and returns the driver that times it end to end.
+std::unique_ptr<Driver> chainInOneManager(nodelet::Loader& manager, const std::string& type, const std::string& prefix) {
   const std::string in = "/bench/" + prefix + "_in";
   for (int i = 1; i <= kBlocks; ++i) {
     const std::string name = blockName(prefix, i);
@@ -215,21 +248,29 @@ Figures chainInOneManager(nodelet::Loader& manager, const std::string& type, con
       std::exit(1);
     }
   }
-  Driver driver(in, blockName(prefix, kBlocks) + "/out/image");
-  return driver.run();
+  return std::make_unique<Driver>(in, blockName(prefix, kBlocks) + "/out/image");
 }
 
-Figures inOneManager() {
-  nodelet::Loader manager(false);
-  return chainInOneManager(manager, "imagenets/Grayscale", "m");
-}
-
-Figures inOneManagerPlain() {
+// The block chain and the plain chain, both loaded at once and measured in alternation: kRounds
+// rounds, each timing both (which goes first alternates), so a change in the machine's load during
+// the run hits both alike. Each round's throughput ratio is one sample; the median and the spread
+// of those samples are what the benchmark reports.
+void blockAndPlainInOneManager(Figures* block, Figures* plain) {
+  nodelet::Loader block_manager(false);
   // The plain nodelets are created directly (no plug-in lookup).
   const boost::function<boost::shared_ptr<nodelet::Nodelet>(const std::string&)> create =
       [](const std::string&) { return boost::shared_ptr<nodelet::Nodelet>(new PlainPass); };
-  nodelet::Loader manager(create);
-  return chainInOneManager(manager, "bench/PlainPass", "h");
+  nodelet::Loader plain_manager(create);
+  std::unique_ptr<Driver> block_driver = chainInOneManager(block_manager, "imagenets/Grayscale", "m");
+  std::unique_ptr<Driver> plain_driver = chainInOneManager(plain_manager, "bench/PlainPass", "h");
+  block_driver->warmUp();
+  plain_driver->warmUp();
+  for (int r = 0; r < kRounds; ++r) {
+    std::pair<Driver*, Figures*> turns[2] = {{block_driver.get(), block}, {plain_driver.get(), plain}};
+    if (r % 2 == 1) std::swap(turns[0], turns[1]);
+    for (auto& turn : turns) turn.first->latency(kLatencySamples / kRounds, turn.second);
+    for (auto& turn : turns) turn.first->throughput(kThroughputMessages / kRounds, turn.second);
+  }
 }
 
 // The chain as one process per block. With `robot_namespace`, blocks 1, 3 and 5 run there (this
@@ -318,8 +359,8 @@ int main(int argc, char** argv) {
   ros::AsyncSpinner spinner(2);
   spinner.start();
 
-  Figures manager = inOneManager();
-  Figures plain = inOneManagerPlain();
+  Figures manager, plain;
+  blockAndPlainInOneManager(&manager, &plain);
   Figures processes = inSeparateProcesses("p");
   Figures two_hosts;
   if (hosts) two_hosts = inSeparateProcesses("r", std::string(hosts) + "-robot");
@@ -357,19 +398,30 @@ int main(int argc, char** argv) {
         at(hop(processes.latency_us), p), at(hop(two_hosts.latency_us), p));
   }
   auto per = [](double a, double b) { return b > 0 ? a / b : 0.0; };
-  std::printf("%-24s %14.1f %14.1f %7.2fx %12.1f %7.1fx", "throughput (images/s)", manager.throughput,
-              plain.throughput, per(plain.throughput, manager.throughput), processes.throughput,
-              per(manager.throughput, processes.throughput));
-  if (hosts) std::printf(" %12.1f %7.1fx", two_hosts.throughput, per(manager.throughput, two_hosts.throughput));
+  const double block_rate = at(manager.throughput, 0.5), plain_rate = at(plain.throughput, 0.5);
+  const double procs_rate = at(processes.throughput, 0.5), hosts_rate = at(two_hosts.throughput, 0.5);
+  std::printf("%-24s %14.1f %14.1f %7.2fx %12.1f %7.2fx", "throughput (images/s)", block_rate, plain_rate,
+              per(block_rate, plain_rate), procs_rate, per(procs_rate, block_rate));
+  if (hosts) std::printf(" %12.2f %7.2fx", hosts_rate, per(hosts_rate, block_rate));
+  // One ratio per round, block and plain measured back to back: their median and spread.
+  std::vector<double> round_ratios;
+  for (size_t r = 0; r < manager.throughput.size() && r < plain.throughput.size(); ++r)
+    round_ratios.push_back(per(manager.throughput[r], plain.throughput[r]));
+  std::printf("\n%-24s %14.1f %14.1f %7.2fx", "CPU per image (us)", at(manager.cpu_us, 0.5), at(plain.cpu_us, 0.5),
+              per(at(manager.cpu_us, 0.5), at(plain.cpu_us, 0.5)));
+  std::printf("\n%-24s %14s %14s %7.2fx   (%zu rounds: min %.2fx, max %.2fx; target >= 0.9x)",
+              "throughput, per round", "", "", at(round_ratios, 0.5), round_ratios.size(), at(round_ratios, 0.0),
+              at(round_ratios, 1.0));
   std::printf("\n%-24s %14s %14s %8s %12s %8s", "same object received", manager.same_pointer ? "yes" : "no",
               plain.same_pointer ? "yes" : "no", "", processes.same_pointer ? "yes" : "no", "");
   if (hosts) std::printf(" %12s", two_hosts.same_pointer ? "yes" : "no");
   std::printf("\n%-24s %14d %14d %8s %12d %8s", "lost images", manager.lost, plain.lost, "", processes.lost, "");
   if (hosts) std::printf(" %12d", two_hosts.lost);
-  std::printf("\n\nratio = block nodelets / plain nodelets (latency; the host's cost per hop, target <= 1.2x),\n"
-              "        plain / block (throughput); processes and 2 hosts ratios = them / block (latency),\n"
-              "        block / them (throughput). 2 hosts: every hop crosses the veth between two network\n"
-              "        namespaces (robot 10.77.0.1: blocks 1, 3, 5; workstation 10.77.0.2: driver, blocks 2, 4).\n");
+  std::printf("\n\nratio = block nodelets / plain nodelets (latency: the host's cost per hop, target <= 1.1x;\n"
+              "        throughput: target >= 0.9x); processes and 2 hosts ratios = them / block. Block and plain\n"
+              "        chains run in alternation (%d rounds), throughput = median of the rounds. 2 hosts: every hop crosses the veth between two network\n"
+              "        namespaces (robot 10.77.0.1: blocks 1, 3, 5; workstation 10.77.0.2: driver, blocks 2, 4).\n",
+              kRounds);
 
   spinner.stop();
   ros::shutdown();
