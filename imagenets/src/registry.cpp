@@ -38,11 +38,16 @@ const BlockInfo* BlockRegistry::findByTypeId(const std::type_info& cpp_type) con
   return nullptr;
 }
 
+void BlockRegistry::addFormerName(const std::string& former, const std::string& type) {
+  former_names_[former] = type;
+}
+
 const BlockInfo* BlockRegistry::find(const std::string& type) const {
   for (const auto& info : infos_) {
     if (info->type == type) return info.get();
   }
-  return nullptr;
+  auto former = former_names_.find(type);
+  return former == former_names_.end() ? nullptr : find(former->second);
 }
 
 std::vector<const BlockInfo*> BlockRegistry::all() const {

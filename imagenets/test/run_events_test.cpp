@@ -95,7 +95,7 @@ links: [x.value -> score.x, x.value -> after.in]
 const char* kCount = R"(
 blocks:
   counter: {type: test/Counter}
-  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
+  out: {type: imagenets/SubNetOutput, properties: {port: n, type: std_msgs/Float64}}
 links: [counter.count -> out.value]
 )";
 
@@ -196,7 +196,7 @@ TEST_F(RunEventsTest, EveryFeedbackTrialIsReportedWithValueScoreAndIndex) {
 
 TEST_F(RunEventsTest, RepetitionsAndInnerBlocksOfASubNetReachTheOuterObserverWithTheirPath) {
   write("ev_count.yaml", kCount);
-  write("ev_repeat.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: ev_count.yaml, repeat: 3}}\n");
+  write("ev_repeat.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: ev_count.yaml, repeat: 3}}\n");
   auto e = loadFile("ev_repeat.yaml");
   Recorder rec(*e);
   ASSERT_TRUE(e->run().ok());
@@ -220,11 +220,11 @@ TEST_F(RunEventsTest, NestedSubNetsGiveTheWholePath) {
   write("ev_count.yaml", kCount);
   write("ev_middle.yaml", R"(
 blocks:
-  inner: {type: imagenets/Executor, properties: {net: ev_count.yaml, repeat: 2}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
+  inner: {type: imagenets/SubNet, properties: {net: ev_count.yaml, repeat: 2}}
+  out: {type: imagenets/SubNetOutput, properties: {port: n, type: std_msgs/Float64}}
 links: [inner.n -> out.value]
 )");
-  write("ev_outer.yaml", "blocks:\n  outer: {type: imagenets/Executor, properties: {net: ev_middle.yaml}}\n");
+  write("ev_outer.yaml", "blocks:\n  outer: {type: imagenets/SubNet, properties: {net: ev_middle.yaml}}\n");
   auto e = loadFile("ev_outer.yaml");
   Recorder rec(*e);
   ASSERT_TRUE(e->run().ok());
@@ -297,7 +297,7 @@ TEST_F(RunEventsTest, CancelMidSweepStopsTheTrialsAndTheNextRunSweepsAgain) {
 
 TEST_F(RunEventsTest, CancelMidRepeatStopsBeforeTheNextRepetition) {
   write("ev_count.yaml", kCount);
-  write("ev_repeat5.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: ev_count.yaml, repeat: 5}}\n");
+  write("ev_repeat5.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: ev_count.yaml, repeat: 5}}\n");
   auto e = loadFile("ev_repeat5.yaml");
   bool armed = true;
   Recorder rec(*e, [&](const RunEvent& ev) {
@@ -324,7 +324,7 @@ TEST_F(RunEventsTest, CancelMidRepeatStopsBeforeTheNextRepetition) {
 
 TEST_F(RunEventsTest, CancelInsideASubNetRepetitionReachesTheInnerRun) {
   write("ev_count.yaml", kCount);
-  write("ev_repeat4.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: ev_count.yaml, repeat: 4}}\n");
+  write("ev_repeat4.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: ev_count.yaml, repeat: 4}}\n");
   auto e = loadFile("ev_repeat4.yaml");
   int counter_done = 0;
   Recorder rec(*e, [&](const RunEvent& ev) {

@@ -15,6 +15,7 @@
 #include "imagenets/executor.h"
 #include "imagenets/graph.h"
 #include "imagenets/net_wide_property.h"
+#include "imagenets/registry.h"
 #include "test_blocks.h"
 
 using namespace imagenets;
@@ -32,29 +33,29 @@ std::unique_ptr<Executor> loadFile(const std::string& name, int threads = 2) {
 // in -> scale(gain) -> out: the innermost net.
 const char* kDouble = R"(
 blocks:
-  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  in: {type: imagenets/SubNetInput, properties: {port: x, type: std_msgs/Float64}}
   scale: {type: test/Scale, properties: {gain: 2}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+  out: {type: imagenets/SubNetOutput, properties: {port: y, type: std_msgs/Float64}}
 links: [in.value -> scale.in, scale.out -> out.value]
 )";
 
 // x -> the innermost net (level3.yaml) -> y.
 const char* kLevel2 = R"(
 blocks:
-  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
-  inner: {type: imagenets/Executor, properties: {net: level3.yaml}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+  in: {type: imagenets/SubNetInput, properties: {port: x, type: std_msgs/Float64}}
+  inner: {type: imagenets/SubNet, properties: {net: level3.yaml}}
+  out: {type: imagenets/SubNetOutput, properties: {port: y, type: std_msgs/Float64}}
 links: [in.value -> inner.x, inner.y -> out.value]
 )";
 
 }  // namespace
 
-TEST(SubNet, PortsComeFromExecutorInputAndOutputBlocks) {
+TEST(SubNet, PortsComeFromSubNetInputAndOutputBlocks) {
   write("double.yaml", kDouble);
   write("outer.yaml", R"(
 blocks:
   c: {type: test/Constant, properties: {value: 3}}
-  sub: {type: imagenets/Executor, properties: {net: double.yaml}}
+  sub: {type: imagenets/SubNet, properties: {net: double.yaml}}
   after: {type: test/Scale, properties: {offset: 1}}
 links: [c.value -> sub.x, sub.y -> after.in]
 )");
@@ -64,18 +65,43 @@ links: [c.value -> sub.x, sub.y -> after.in]
   EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("after.out")->data, 7.0);
 }
 
+TEST(SubNet, NetsWrittenWithTheFormerTypeNamesStillLoad) {
+  write("double_former.yaml", R"(
+blocks:
+  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  scale: {type: test/Scale, properties: {gain: 2}}
+  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+links: [in.value -> scale.in, scale.out -> out.value]
+)");
+  write("outer_former.yaml", R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 4}}
+  sub: {type: imagenets/Executor, properties: {net: double_former.yaml}}
+links: [c.value -> sub.x]
+)");
+  auto e = loadFile("outer_former.yaml");
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("sub.y")->data, 8.0);
+  const BlockRegistry& registry = BlockRegistry::instance();
+  ASSERT_NE(registry.find("imagenets/Executor"), nullptr);
+  EXPECT_EQ(registry.find("imagenets/Executor")->type, "imagenets/SubNet");
+  EXPECT_EQ(registry.find("imagenets/ExecutorInput")->type, "imagenets/SubNetInput");
+  EXPECT_EQ(registry.find("imagenets/ExecutorOutput")->type, "imagenets/SubNetOutput");
+  EXPECT_EQ(registry.find("imagenets/NoSuchBlock"), nullptr);
+}
+
 TEST(SubNet, AnOptionalInputMayStayWithoutAValue) {
   write("add.yaml", R"(
 blocks:
-  a: {type: imagenets/ExecutorInput, properties: {port: a, type: std_msgs/Float64}}
-  b: {type: imagenets/ExecutorInput, properties: {port: b, type: std_msgs/Float64, optional: true}}
+  a: {type: imagenets/SubNetInput, properties: {port: a, type: std_msgs/Float64}}
+  b: {type: imagenets/SubNetInput, properties: {port: b, type: std_msgs/Float64, optional: true}}
   add: {type: test/Add}
-  sum: {type: imagenets/ExecutorOutput, properties: {port: sum, type: std_msgs/Float64}}
+  sum: {type: imagenets/SubNetOutput, properties: {port: sum, type: std_msgs/Float64}}
 links: [a.value -> add.a, b.value -> add.b, add.sum -> sum.value]
 )");
   write("outer_optional.yaml", R"(
 blocks:
-  sub: {type: imagenets/Executor, properties: {net: add.yaml}}
+  sub: {type: imagenets/SubNet, properties: {net: add.yaml}}
 )");
   auto e = loadFile("outer_optional.yaml");
   const auto number = [](double v) {
@@ -103,7 +129,7 @@ TEST(SubNet, OuterLinksAreTypeChecked) {
 blocks:
   c: {type: test/Constant, feedback: {property: value, from: 0, to: 1, score: p.score}}
   p: {type: test/Parabola}
-  sub: {type: imagenets/Executor, properties: {net: double.yaml}}
+  sub: {type: imagenets/SubNet, properties: {net: double.yaml}}
 links: [c.value -> p.x, c.feedback_trace -> sub.x]
 )");
   try {
@@ -121,16 +147,16 @@ TEST(SubNet, NestsThreeLevelsDeep) {
   write("level2.yaml", kLevel2);
   write("level1.yaml", R"(
 blocks:
-  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
-  inner: {type: imagenets/Executor, properties: {net: level2.yaml}}
-  twice: {type: imagenets/Executor, properties: {net: level3.yaml}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+  in: {type: imagenets/SubNetInput, properties: {port: x, type: std_msgs/Float64}}
+  inner: {type: imagenets/SubNet, properties: {net: level2.yaml}}
+  twice: {type: imagenets/SubNet, properties: {net: level3.yaml}}
+  out: {type: imagenets/SubNetOutput, properties: {port: y, type: std_msgs/Float64}}
 links: [in.value -> inner.x, inner.y -> twice.x, twice.y -> out.value]
 )");
   write("top.yaml", R"(
 blocks:
   c: {type: test/Constant, properties: {value: 1.5}}
-  sub: {type: imagenets/Executor, properties: {net: level1.yaml}}
+  sub: {type: imagenets/SubNet, properties: {net: level1.yaml}}
 links: [c.value -> sub.x]
 )");
   auto e = loadFile("top.yaml");
@@ -143,9 +169,9 @@ links: [c.value -> sub.x]
 }
 
 TEST(SubNet, SelfInclusionIsRejectedWithTheChain) {
-  write("self.yaml", "blocks:\n  me: {type: imagenets/Executor, properties: {net: self.yaml}}\n");
-  write("ping.yaml", "blocks:\n  pong: {type: imagenets/Executor, properties: {net: pong.yaml}}\n");
-  write("pong.yaml", "blocks:\n  ping: {type: imagenets/Executor, properties: {net: ping.yaml}}\n");
+  write("self.yaml", "blocks:\n  me: {type: imagenets/SubNet, properties: {net: self.yaml}}\n");
+  write("ping.yaml", "blocks:\n  pong: {type: imagenets/SubNet, properties: {net: pong.yaml}}\n");
+  write("pong.yaml", "blocks:\n  ping: {type: imagenets/SubNet, properties: {net: ping.yaml}}\n");
   for (const char* name : {"self.yaml", "ping.yaml"}) {
     try {
       Net::loadFile(dir() + "/" + name);
@@ -162,18 +188,18 @@ TEST(SubNet, TwoInstancesRunIndependentlyAndInParallel) {
   // Each instance holds a barrier that only opens when both instances are inside it at once.
   write("meet.yaml", R"(
 blocks:
-  in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+  in: {type: imagenets/SubNetInput, properties: {port: x, type: std_msgs/Float64}}
   meet: {type: test/Barrier, properties: {group: two_subnets, parties: 2}}
   scale: {type: test/Scale, properties: {gain: 3}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+  out: {type: imagenets/SubNetOutput, properties: {port: y, type: std_msgs/Float64}}
 links: [in.value -> meet.in, in.value -> scale.in, scale.out -> out.value]
 )");
   write("stereo.yaml", R"(
 blocks:
   left_in: {type: test/Constant, properties: {value: 1}}
   right_in: {type: test/Constant, properties: {value: 2}}
-  left: {type: imagenets/Executor, properties: {net: meet.yaml}}
-  right: {type: imagenets/Executor, properties: {net: meet.yaml}}
+  left: {type: imagenets/SubNet, properties: {net: meet.yaml}}
+  right: {type: imagenets/SubNet, properties: {net: meet.yaml}}
 links: [left_in.value -> left.x, right_in.value -> right.x]
 )");
   auto e = loadFile("stereo.yaml", 2);
@@ -187,10 +213,10 @@ TEST(SubNet, RepeatCollectsNResults) {
   write("count.yaml", R"(
 blocks:
   counter: {type: test/Counter}
-  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
+  out: {type: imagenets/SubNetOutput, properties: {port: n, type: std_msgs/Float64}}
 links: [counter.count -> out.value]
 )");
-  write("repeat.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: count.yaml, repeat: 5}}\n");
+  write("repeat.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: count.yaml, repeat: 5}}\n");
   auto e = loadFile("repeat.yaml");
   ASSERT_TRUE(e->run().ok());
   auto all = e->output<std_msgs::Float64MultiArray>("loop.n_all");
@@ -202,20 +228,20 @@ links: [counter.count -> out.value]
 // A net whose counter fails every `fail_every`-th run, and hands out its count as `n`.
 std::string counterNet(int fail_every) {
   return "blocks:\n  counter: {type: test/Counter, properties: {fail_every: " + std::to_string(fail_every) +
-         "}}\n  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}\n"
+         "}}\n  out: {type: imagenets/SubNetOutput, properties: {port: n, type: std_msgs/Float64}}\n"
          "links: [counter.count -> out.value]\n";
 }
 
 TEST(SubNet, FailedRepetitionsAreLeftOutOrFailTheBlock) {
   // Every 2nd run of the inner counter fails: runs 2 and 4 of 5.
   write("flaky.yaml", counterNet(2));
-  write("tolerant.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: flaky.yaml, repeat: 5, max_failures: 2}}\n");
+  write("tolerant.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: flaky.yaml, repeat: 5, max_failures: 2}}\n");
   auto tolerant = loadFile("tolerant.yaml");
   ASSERT_TRUE(tolerant->run().ok());
   // Only the successful repetitions: a failed one does not repeat the previous result.
   EXPECT_EQ(tolerant->output<std_msgs::Float64MultiArray>("loop.n_all")->data, (std::vector<double>{1, 3, 5}));
 
-  write("strict.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: flaky.yaml, repeat: 5, max_failures: 1}}\n");
+  write("strict.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: flaky.yaml, repeat: 5, max_failures: 1}}\n");
   auto strict = loadFile("strict.yaml");
   const RunReport r = strict->run();
   ASSERT_EQ(r.failed.size(), 1u);
@@ -260,13 +286,13 @@ TEST(SubNet, AnUntilNetIsNotAskedBeforeARepetitionSucceeded) {
   write("failing.yaml", counterNet(1));
   write("any_sum.yaml", R"(
 blocks:
-  n_all: {type: imagenets/ExecutorInput, properties: {port: n_all, type: std_msgs/Float64MultiArray}}
+  n_all: {type: imagenets/SubNetInput, properties: {port: n_all, type: std_msgs/Float64MultiArray}}
   zero: {type: test/Constant, properties: {value: 0}}
   sum: {type: test/SumAtLeast}
-  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+  done: {type: imagenets/SubNetOutput, properties: {port: done, type: std_msgs/Bool}}
 links: [n_all.value -> sum.values, zero.value -> sum.threshold, sum.reached -> done.value]
 )");
-  write("never_asked.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: failing.yaml, "
+  write("never_asked.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: failing.yaml, "
                             "max_failures: 3, until_net: any_sum.yaml, max_repeat: 3}}\n");
   auto e = loadFile("never_asked.yaml");
   RepetitionLog log(*e);
@@ -290,14 +316,14 @@ CollectorRegistration<std_msgs::Int32, std_msgs::Float64MultiArray> indices(
 // A net that hands out the index its input `k` is told.
 const char* kIndex = R"(
 blocks:
-  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
+  k: {type: imagenets/SubNetInput, properties: {port: k, type: std_msgs/Int32}}
+  out: {type: imagenets/SubNetOutput, properties: {port: index, type: std_msgs/Int32}}
 links: [k.value -> out.value]
 )";
 
 TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
   write("index.yaml", kIndex);
-  write("indexed.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, repeat: 4, "
+  write("indexed.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: index.yaml, repeat: 4, "
                         "repetition_input: k}}\n");
   auto e = loadFile("indexed.yaml");
   // The index port is fed by the block itself: it is not an input of the outer block.
@@ -305,7 +331,7 @@ TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
   ASSERT_TRUE(e->run().ok());
   EXPECT_EQ(e->output<std_msgs::Float64MultiArray>("loop.index_all")->data, (std::vector<double>{0, 1, 2, 3}));
 
-  write("counted.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, "
+  write("counted.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: index.yaml, "
                         "repetition_input: k, repeat_from_input: true}}\n");
   auto counted = loadFile("counted.yaml");
   auto three = boost::make_shared<std_msgs::Int32>();
@@ -319,7 +345,7 @@ TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
   ASSERT_EQ(zero.failed.size(), 1u);
   EXPECT_NE(zero.failed[0].find("input 'repeat': 0 repetitions"), std::string::npos) << zero.failed[0];
 
-  write("misnamed.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, "
+  write("misnamed.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: index.yaml, "
                          "repetition_input: kk}}\n");
   try {
     Net::loadFile(dir() + "/misnamed.yaml");
@@ -333,19 +359,19 @@ TEST(SubNet, EachRepetitionIsToldItsIndexAndTheCountCanComeFromAnInput) {
 // The index net with an input `target` it does not use itself (an until net's).
 const char* kIndexTarget = R"(
 blocks:
-  k: {type: imagenets/ExecutorInput, properties: {port: k, type: std_msgs/Int32}}
-  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: index, type: std_msgs/Int32}}
+  k: {type: imagenets/SubNetInput, properties: {port: k, type: std_msgs/Int32}}
+  target: {type: imagenets/SubNetInput, properties: {port: target, type: std_msgs/Float64}}
+  out: {type: imagenets/SubNetOutput, properties: {port: index, type: std_msgs/Int32}}
 links: [k.value -> out.value]
 )";
 
 // An until net: done when the indices so far (`index_all`) add up to the input `target`.
 const char* kSumReached = R"(
 blocks:
-  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
-  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  index_all: {type: imagenets/SubNetInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  target: {type: imagenets/SubNetInput, properties: {port: target, type: std_msgs/Float64}}
   sum: {type: test/SumAtLeast}
-  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+  done: {type: imagenets/SubNetOutput, properties: {port: done, type: std_msgs/Bool}}
 links: [index_all.value -> sum.values, target.value -> sum.threshold, sum.reached -> done.value]
 )";
 
@@ -355,7 +381,7 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
   write("index_target.yaml", kIndexTarget);
   // Its until net is fed from the block's input `target` and the collection `index_all` so far.
   write("sum_reached.yaml", kSumReached);
-  write("until.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, repeat: 2, "
+  write("until.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: index_target.yaml, repeat: 2, "
                       "repetition_input: k, until_net: sum_reached.yaml, max_repeat: 8}}\n");
   auto e = loadFile("until.yaml");
   RepetitionLog log(*e);
@@ -401,7 +427,7 @@ TEST(SubNet, RepeatUntilTheUntilNetIsDoneOrMaxRepeatRan) {
       << below.failed[0];
 
   // From inputs, as the calibration plan gives them.
-  write("until_counted.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, "
+  write("until_counted.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: index_target.yaml, "
                               "repetition_input: k, repeat_from_input: true, until_net: sum_reached.yaml}}\n");
   auto counted = loadFile("until_counted.yaml");
   auto number = [](int n) {
@@ -426,12 +452,12 @@ TEST(SubNet, AnUntilNetWhosePortsDoNotFitIsNamed) {
   write("sum_reached.yaml", kSumReached);  // wants `target`, which this block does not have
   write("until_no_done.yaml", R"(
 blocks:
-  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
-  stop: {type: imagenets/ExecutorOutput, properties: {port: stop, type: std_msgs/Float64MultiArray}}
+  index_all: {type: imagenets/SubNetInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  stop: {type: imagenets/SubNetOutput, properties: {port: stop, type: std_msgs/Float64MultiArray}}
 links: [index_all.value -> stop.value]
 )");
   auto error = [](const std::string& until) {
-    write("until_bad.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: index.yaml, "
+    write("until_bad.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: index.yaml, "
                             "repetition_input: k, until_net: " + until + ", max_repeat: 3}}\n");
     try {
       Net::loadFile(dir() + "/until_bad.yaml");
@@ -453,10 +479,10 @@ TEST(SubNet, WithEnoughAllowedFailuresAFailedRunIsAResultNotAnError) {
   write("always_fails.yaml", R"(
 blocks:
   counter: {type: test/Counter, properties: {fail_every: 1}}
-  out: {type: imagenets/ExecutorOutput, properties: {port: n, type: std_msgs/Float64}}
+  out: {type: imagenets/SubNetOutput, properties: {port: n, type: std_msgs/Float64}}
 links: [counter.count -> out.value]
 )");
-  write("tolerated.yaml", "blocks:\n  once: {type: imagenets/Executor, properties: {net: always_fails.yaml, "
+  write("tolerated.yaml", "blocks:\n  once: {type: imagenets/SubNet, properties: {net: always_fails.yaml, "
                           "max_failures: 1}}\n");
   auto e = loadFile("tolerated.yaml");
   ASSERT_TRUE(e->run().ok());
@@ -468,7 +494,7 @@ links: [counter.count -> out.value]
 
 TEST(SubNet, RepeatBelowOneIsAClearError) {
   write("count.yaml", "blocks:\n  counter: {type: test/Counter}\n");
-  write("repeat0.yaml", "blocks:\n  loop: {type: imagenets/Executor, properties: {net: count.yaml, repeat: 0}}\n");
+  write("repeat0.yaml", "blocks:\n  loop: {type: imagenets/SubNet, properties: {net: count.yaml, repeat: 0}}\n");
   try {
     Net::loadFile(dir() + "/repeat0.yaml");
     FAIL();
@@ -483,13 +509,13 @@ TEST(SubNet, InlineYamlNet) {
 blocks:
   c: {type: test/Constant, properties: {value: 4}}
   sub:
-    type: imagenets/Executor
+    type: imagenets/SubNet
     properties:
       net_yaml: |
         blocks:
-          in: {type: imagenets/ExecutorInput, properties: {port: x, type: std_msgs/Float64}}
+          in: {type: imagenets/SubNetInput, properties: {port: x, type: std_msgs/Float64}}
           scale: {type: test/Scale, properties: {gain: 0.5}}
-          out: {type: imagenets/ExecutorOutput, properties: {port: y, type: std_msgs/Float64}}
+          out: {type: imagenets/SubNetOutput, properties: {port: y, type: std_msgs/Float64}}
         links: [in.value -> scale.in, scale.out -> out.value]
 links: [c.value -> sub.x]
 )", "inline.yaml", "");
@@ -506,7 +532,7 @@ TEST(SubNet, APropertyIsSetOnEveryBlockOfTheNetTreeThatHasIt) {
   write("tree.yaml", R"(
 blocks:
   c: {type: test/Constant, properties: {value: 3}}
-  sub: {type: imagenets/Executor, properties: {net: level2.yaml}}
+  sub: {type: imagenets/SubNet, properties: {net: level2.yaml}}
   after: {type: test/Scale, properties: {offset: 1}}
 links: [c.value -> sub.x, sub.y -> after.in]
 )");
@@ -523,17 +549,17 @@ links: [c.value -> sub.x, sub.y -> after.in]
   write("index_target.yaml", kIndexTarget);
   write("scaled_sum_reached.yaml", R"(
 blocks:
-  index_all: {type: imagenets/ExecutorInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
-  target: {type: imagenets/ExecutorInput, properties: {port: target, type: std_msgs/Float64}}
+  index_all: {type: imagenets/SubNetInput, properties: {port: index_all, type: std_msgs/Float64MultiArray}}
+  target: {type: imagenets/SubNetInput, properties: {port: target, type: std_msgs/Float64}}
   scale: {type: test/Scale}
   sum: {type: test/SumAtLeast}
-  done: {type: imagenets/ExecutorOutput, properties: {port: done, type: std_msgs/Bool}}
+  done: {type: imagenets/SubNetOutput, properties: {port: done, type: std_msgs/Bool}}
 links: [index_all.value -> sum.values, target.value -> scale.in, scale.out -> sum.threshold, sum.reached -> done.value]
 )");
   write("until_tree.yaml", R"(
 blocks:
   c: {type: test/Constant, properties: {value: 10}}
-  loop: {type: imagenets/Executor, properties: {net: index_target.yaml, repeat: 2, repetition_input: k,
+  loop: {type: imagenets/SubNet, properties: {net: index_target.yaml, repeat: 2, repetition_input: k,
                                                 until_net: scaled_sum_reached.yaml, max_repeat: 8}}
 links: [c.value -> loop.target]
 )");
@@ -558,7 +584,7 @@ TEST(SubNet, GraphDrawsSubNetsAsClustersAndFeedbackDashed) {
   write("drawn.yaml", R"(
 blocks:
   c: {type: test/Constant, feedback: {property: value, from: 0, to: 2, score: sub.y}}
-  sub: {type: imagenets/Executor, properties: {net: double.yaml}}
+  sub: {type: imagenets/SubNet, properties: {net: double.yaml}}
 links: [c.value -> sub.x]
 )");
   const std::string dot = toDot(*Net::loadFile(dir() + "/drawn.yaml"), true);

@@ -1,6 +1,6 @@
 // A repeated sample sub-net also hands out all its samples as one message (`sample_all`,
 // collectors.h), in repetition order: what SolveCalibration takes. The calibration's message types
-// are known by name from load, so a net's ExecutorInput / ExecutorOutput can name them.
+// are known by name from load, so a net's SubNetInput / SubNetOutput can name them.
 #include <imagenets_calibration_msgs/CalibrationPlan.h>
 #include <imagenets_calibration_msgs/CalibrationResult.h>
 #include <imagenets_calibration_msgs/CalibrationSamples.h>

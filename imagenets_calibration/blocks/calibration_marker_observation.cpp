@@ -1,6 +1,6 @@
 // A marker observation (found, pose, confidence, threshold, reprojection error, the 8 points, why
 // not) from the outputs of the robust detection sub-net (config/nets/calibration_marker_detection.yaml
-// run by imagenets/Executor with max_failures 1, so "not found" is its `failure`, not an error).
+// run by imagenets/SubNet with max_failures 1, so "not found" is its `failure`, not an error).
 #include <boost/make_shared.hpp>
 #include <imagenets/FeedbackTrace.h>
 #include <imagenets/MarkerDetection.h>

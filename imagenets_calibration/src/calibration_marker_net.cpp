@@ -14,6 +14,7 @@
 #include "imagenets/executor.h"
 #include "imagenets/net_writer.h"
 #include "imagenets/package_file.h"
+#include "imagenets/registry.h"
 
 namespace imagenets_calibration {
 
@@ -23,9 +24,10 @@ std::string CalibrationMarkerNet::defaultNetPath() {
 
 imagenets::NetSpec CalibrationMarkerNet::specWithSearch(const std::function<void(imagenets::NetSpec&)>& edit_search) {
   imagenets::NetSpec spec = imagenets::parseNetFile(defaultNetPath());
+  const imagenets::BlockInfo* sub_net = imagenets::BlockRegistry::instance().find("imagenets/SubNet");
   for (auto& b : spec.blocks) {
-    for (auto& p : b.properties) {
-      if (b.type != "imagenets/Executor" || p.name != "net") continue;
+    for (auto& p : b.properties) {  // by its name or a former one
+      if (imagenets::BlockRegistry::instance().find(b.type) != sub_net || p.name != "net") continue;
       imagenets::NetSpec search = imagenets::parseNetFile(spec.base_dir + "/" + p.text);
       edit_search(search);
       p.name = "net_yaml";

@@ -221,7 +221,7 @@ void CalibrationNode::loadNets(const std::string& net, const std::string& replay
     }
   };
   need("plan", "an imagenets_calibration_msgs/CalibrationPlan: the node sets its method, loops, replay");
-  need("samples", "the imagenets/Executor running the sample net: a replay runs it with " + replay_net);
+  need("samples", "the imagenets/SubNet running the sample net: a replay runs it with " + replay_net);
   need("solve", "an imagenets/SolveCalibration: the node sets its limits");
   imagenets::NetSpec replay_spec = spec;
   for (auto& b : replay_spec.blocks) {

@@ -48,7 +48,7 @@ const std::vector<Target>& targets() {
       {"net_file", "imagenets_blocks/config/nets/*.yaml",
        [](const std::string&, const std::string& file) { Net::build(parseNetFile(file)); }},
       {"net_rosparam", "imagenets_system_tests/fuzz/seeds/net_rosparam/*",
-       // The rosparam form: a launch file's <rosparam> dict, as the Executor nodelet gets it.
+       // The rosparam form: a launch file's <rosparam> dict, as the SubNet nodelet gets it.
        [](const std::string& input, const std::string&) {
          int offset = 0;
          XmlRpc::XmlRpcValue value(input, &offset);

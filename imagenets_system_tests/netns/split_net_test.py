@@ -4,7 +4,7 @@
 Two network namespaces stand for two hosts (scripts/two-hosts): "robot" (10.77.0.1) and
 "workstation" (10.77.0.2), joined by a veth pair. One ROS master runs on the robot. The Fig. 3.4
 net (imagenets_blocks/launch/fig3_4_parallel_subnets.launch: a stereo pair of file sources, each image through
-the Fig. 3.3 segmentation sub-net in an imagenets/Executor nodelet) runs
+the Fig. 3.3 segmentation sub-net in an imagenets/SubNet nodelet) runs
 
   1. in one nodelet manager on the robot (the reference), then
   2. split: the stereo acquisition in a manager on the robot, the two sub-nets in a manager on the

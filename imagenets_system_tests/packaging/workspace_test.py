@@ -158,7 +158,7 @@ class InstalledWorkspace(unittest.TestCase):
     def test_blocks_lists_the_block_library(self):
         out = self.run_in_install("imagenets blocks")
         self.assertIn("imagenets/Threshold - Fixed threshold", out)
-        self.assertIn("imagenets/Executor - Runs a net file", out)  # the engine's block, from imagenets_nodelet
+        self.assertIn("imagenets/SubNet - Runs a net file", out)  # the engine's block, from imagenets_nodelet
 
     def test_run_a_shipped_net(self):
         out = self.run_in_install("imagenets run $(rospack find imagenets_blocks)/config/nets/threshold_demo.yaml "

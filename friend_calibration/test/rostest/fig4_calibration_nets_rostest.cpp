@@ -1,7 +1,7 @@
 // rostest: the FRIEND calibration net (config/nets/calibration.yaml, the one definition) run three
 // ways against the simulated FRIEND robot:
 //   - roslaunch: launch/nets/fig4_3_redundant_calibration.launch runs it (paper method, 3 loops)
-//     in an imagenets/Executor nodelet: its fixed point against the simulator's truth (the paper's
+//     in an imagenets/SubNet nodelet: its fixed point against the simulator's truth (the paper's
 //     method keeps the ~4.4 mm / 0.4 deg bias of the nominal marker offset, docs/calibration-method.md),
 //     and against the library's calibrate() on the net's own samples (to 1e-9);
 //   - the calibration node (service): a live run at the same pose agrees within the image noise;

@@ -15,7 +15,7 @@
 //     ~parameter_descriptions, ~parameter_updates); a change re-runs the block on its cached
 //     inputs, which refreshes everything downstream.
 //   - ~run (std_srvs/Trigger) re-runs the block; ~status (latched imagenets/BlockNodeletStatus) reports.
-//   - a block running a net inside (imagenets/Executor) can publish every inner output port as
+//   - a block running a net inside (imagenets/SubNet) can publish every inner output port as
 //     ~internal/<block>/<port> (property publish_internal_ports), only while subscribed.
 // The logic lives in block_nodelet.cpp; this header stays light because every block includes it.
 #pragma once

@@ -1,4 +1,4 @@
-// Collections of repeated results: a sub-net run N times (imagenets/Executor, `repeat: N`) also
+// Collections of repeated results: a sub-net run N times (imagenets/SubNet, `repeat: N`) also
 // hands out, beside each output, its N results as one message (`<port>_all`) when a collector is
 // registered for the output's type. Any block library adds collectors for its own types:
 //

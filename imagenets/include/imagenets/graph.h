@@ -11,7 +11,7 @@ namespace imagenets {
 
 // A stable colour per data type, the same in every drawing.
 std::string typeColor(const std::string& type_name);
-// expand_sub_nets: draw each sub-net's blocks inside a cluster beside its Executor block.
+// expand_sub_nets: draw each sub-net's blocks inside a cluster beside its SubNet block.
 std::string toDot(const Net& net, bool expand_sub_nets = false);
 // Runs Graphviz `dot -T<format>` (Debian's graphviz) on DOT text: the picture's bytes ("svg",
 // "png", ...). Throws std::runtime_error when dot is missing or fails.

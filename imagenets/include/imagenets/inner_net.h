@@ -1,4 +1,4 @@
-// Implemented by a block that runs a whole net inside (imagenets/Executor): lets a host look at
+// Implemented by a block that runs a whole net inside (imagenets/SubNet): lets a host look at
 // the inner net's cached values, e.g. the nodelet host's `publish_internal_ports`.
 #pragma once
 

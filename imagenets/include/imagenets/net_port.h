@@ -1,7 +1,7 @@
 // A block that stands for a port of the net it sits in (paper 3.5): when that net runs as a block
-// of another net (imagenets/Executor), the outer block gets a port of this name and type. The
+// of another net (imagenets/SubNet), the outer block gets a port of this name and type. The
 // outer block feeds an input port's `value` input, and reads an output port's `value` output.
-// imagenets/ExecutorInput and imagenets/ExecutorOutput are the engine's own; any block library may
+// imagenets/SubNetInput and imagenets/SubNetOutput are the engine's own; any block library may
 // add others, the sub-net block finds them through this interface, not by type name.
 #pragma once
 

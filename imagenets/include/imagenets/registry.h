@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <typeinfo>
@@ -32,6 +33,9 @@ class BlockRegistry {
 
   // `anchor`: any object inside the registering binary (tells which library it is).
   void add(BlockInfo info, const void* anchor = nullptr);
+  // A type's former name, which nets and launch files written before a rename still use.
+  void addFormerName(const std::string& former, const std::string& type);
+  // Finds a type by its name or a former name.
   const BlockInfo* find(const std::string& type) const;
   const BlockInfo* findByTypeId(const std::type_info& cpp_type) const;
   std::vector<const BlockInfo*> all() const;  // sorted by category, then type
@@ -48,10 +52,13 @@ class BlockRegistry {
   std::vector<std::string> suggest(const std::string& type, size_t max = 3) const;
   // Type names claimed by two different classes (the first one wins); should be empty.
   const std::vector<std::string>& conflicts() const { return conflicts_; }
+  // former name -> type
+  const std::map<std::string, std::string>& formerNames() const { return former_names_; }
 
  private:
   std::vector<std::unique_ptr<BlockInfo>> infos_;
   std::vector<std::string> conflicts_;
+  std::map<std::string, std::string> former_names_;
   std::function<void()> loader_;
   bool loaded_ = false;
 };
@@ -59,6 +66,9 @@ class BlockRegistry {
 namespace detail {
 struct BlockRegistration {
   BlockRegistration(BlockInfo info) { BlockRegistry::instance().add(std::move(info), this); }
+};
+struct FormerNameRegistration {
+  FormerNameRegistration(const char* former, const char* type) { BlockRegistry::instance().addFormerName(former, type); }
 };
 }  // namespace detail
 
@@ -77,3 +87,8 @@ struct BlockRegistration {
                                return std::make_unique<Class>();                                 \
                              },                                                                  \
                              &typeid(Class), std::string()})
+
+// Keeps FormerName loading as TypeName (in nets, and as a nodelet in launch files) after a rename.
+#define IMAGENETS_REGISTER_BLOCK_FORMER_NAME(FormerName, TypeName)                                           \
+  static ::imagenets::detail::FormerNameRegistration IMAGENETS_DETAIL_CAT(imagenets_block_former_, __LINE__)( \
+      FormerName, TypeName)

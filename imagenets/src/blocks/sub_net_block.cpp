@@ -113,7 +113,7 @@ void SubNetBlock::configure() {
   }
   if (!repetition_port.empty() && repetition_input_.empty()) {
     throw BlockError("property 'repetition_input': " + spec.origin + " has no input port '" + repetition_port +
-                     "' (an imagenets/ExecutorInput with port '" + repetition_port + "', type std_msgs/Int32)");
+                     "' (an imagenets/SubNetInput with port '" + repetition_port + "', type std_msgs/Int32)");
   }
   if (property<int>("max_failures") > 0) {
     addOutput<std_msgs::String>("failure", "why the first failed repetition failed; only when one failed");
@@ -169,7 +169,7 @@ void SubNetBlock::configure() {
   }
   if (until_done_.empty()) {
     throw BlockError("property 'until_net': " + until_spec.origin +
-                     " has no output 'done' (an imagenets/ExecutorOutput with port 'done', type std_msgs/Bool)");
+                     " has no output 'done' (an imagenets/SubNetOutput with port 'done', type std_msgs/Bool)");
   }
 }
 
@@ -302,5 +302,6 @@ const Net* SubNetBlock::subNet() const { return executor_ ? &executor_->net() : 
 
 }  // namespace imagenets
 
-IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::SubNetBlock, "imagenets/Executor", "executor",
+IMAGENETS_REGISTER_BLOCK_TYPE(imagenets::SubNetBlock, "imagenets/SubNet", "sub-net",
                               "Runs a net file as one block (sub-net), optionally N times");
+IMAGENETS_REGISTER_BLOCK_FORMER_NAME("imagenets/Executor", "imagenets/SubNet");

@@ -56,6 +56,10 @@ std::string nodeletPluginXml(const std::string& only) {
       if (!info || !isSharedLibrary(e.library)) continue;
       if (!only.empty() && e.library != "lib" + only + ".so") continue;
       libraries[e.library][info->type] = {e.plugin_type, info->doc};
+      // A former name stays a nodelet type, so launch files written before a rename still load.
+      for (const auto& [former, type] : BlockRegistry::instance().formerNames()) {
+        if (type == info->type) libraries[e.library][former] = {e.plugin_type, "former name of " + type};
+      }
     }
   }
   std::ostringstream xml;

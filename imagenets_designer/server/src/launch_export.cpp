@@ -63,7 +63,7 @@ std::string exportLaunch(const NetSpec& spec) {
     if (b.feedback) {
       os << "    <!-- feedback on '" << xml(b.feedback->property) << "' (score " << xml(b.feedback->score_block) << "."
          << xml(b.feedback->score_port)
-         << ") needs the executor: the nodelet keeps the property's value; run the net in an imagenets/Executor"
+         << ") needs the executor: the nodelet keeps the property's value; run the net in an imagenets/SubNet"
             " nodelet to tune it. -->\n";
     }
     os << "    <node pkg=\"nodelet\" type=\"nodelet\" name=\"" << xml(b.name) << "\" args=\"load " << xml(b.type)

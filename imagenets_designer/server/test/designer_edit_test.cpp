@@ -334,8 +334,8 @@ TEST_F(DesignerTest, SubNetIsShownReadOnlyWithItsInnerBlocks) {
   const std::string file = copyConfigNet("segmentation_subnet.yaml");
   start();
   DesignerClient& c = connect();
-  // An Executor block needs its net to be built: it is added with its properties.
-  expectOk(c.request({{"op", "add_block"}, {"type", "imagenets/Executor"}, {"name", "seg"}, {"properties", {{"net", file}}}}));
+  // An SubNet block needs its net to be built: it is added with its properties.
+  expectOk(c.request({{"op", "add_block"}, {"type", "imagenets/SubNet"}, {"name", "seg"}, {"properties", {{"net", file}}}}));
   const json net = netState(c);
   EXPECT_TRUE(blockOf(net, "seg")["has_subnet"]);
   EXPECT_FALSE(blockOf(net, "seg")["inputs"].empty());

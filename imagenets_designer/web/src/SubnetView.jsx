@@ -9,7 +9,7 @@ const nodeTypes = { block: BlockNode };
 const edgeTypes = { feedback: FeedbackEdge };
 const noActions = { toggleWatch: () => {}, openData: () => {}, openSubnet: () => {} };
 
-// The inner net of an imagenets/Executor block (paper 3.5), read-only, with its blocks' stats.
+// The inner net of an imagenets/SubNet block (paper 3.5), read-only, with its blocks' stats.
 export function SubnetView({ block, state, colors, request, onClose }) {
   const { nodes, edges } = useMemo(() => {
     const flow = flowFromNet(state, colors);

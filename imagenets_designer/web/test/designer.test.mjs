@@ -265,12 +265,12 @@ test('a user draws, runs, inspects, undoes and saves a net', { timeout: 600000 }
   await step('opens a sub-net', async () => {
     // An Executor cannot exist without its net: dropping one asks for the file.
     const before = new Set(await blockNames(page));
-    await dragBlock(page, 'imagenets/Executor', ...at(0.4, 0.7));
+    await dragBlock(page, 'imagenets/SubNet', ...at(0.4, 0.7));
     const field = await page.waitForSelector('[data-testid="file-path"]', { timeout: LONG });
     await field.evaluate((i) => i.select());
     await page.keyboard.type(path.join(config, 'nets/segmentation_subnet.yaml'));
     await click(page, '[data-testid="file-ok"]');
-    executor = await newBlock(page, before, 'imagenets/Executor');
+    executor = await newBlock(page, before, 'imagenets/SubNet');
     await page.waitForSelector(`${nodeSel(executor)} [data-handleid="image"]`, { timeout: LONG });
     await link(page, `${source}.image`, `${executor}.image`);
     await until('five links', async () => (await linkIds(page)).length === 5);

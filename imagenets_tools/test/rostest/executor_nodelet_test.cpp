@@ -1,4 +1,4 @@
-// Checks the Executor nodelets of executor_nodelet.test against `imagenets run` on the same file.
+// Checks the SubNet nodelets of executor_nodelet.test against `imagenets run` on the same file.
 #include <unistd.h>
 
 #include <chrono>
@@ -80,7 +80,7 @@ TEST(ExecutorNodelet, RosparamNetGivesTheSameOutputAsTheTool) {
   Latest from_param("exec_param/out/binary");
   const cv::Mat expected = cv::imread(toolOutputDir() + "/binary.value.png", cv::IMREAD_UNCHANGED);
   auto image = from_param.get(15.0);
-  ASSERT_TRUE(image) << "no output from the Executor nodelet with a rosparam net";
+  ASSERT_TRUE(image) << "no output from the SubNet nodelet with a rosparam net";
   expectSameMono8(*image, expected, "exec_param binary");
   // Not a trivial image: the threshold splits the scene.
   EXPECT_GT(cv::countNonZero(expected), 0);
@@ -128,9 +128,9 @@ TEST(ExecutorNodelet, TheInnerNetCanBeChangedLive) {
   // Same ports, no inversion: the block re-runs on its cached input with the new net.
   const std::string plain =
       "blocks:\n"
-      "  image: {type: imagenets/ExecutorInput, properties: {port: image}}\n"
+      "  image: {type: imagenets/SubNetInput, properties: {port: image}}\n"
       "  invert: {type: imagenets/Threshold, properties: {threshold: 128}}\n"
-      "  inverted: {type: imagenets/ExecutorOutput, properties: {port: inverted}}\n"
+      "  inverted: {type: imagenets/SubNetOutput, properties: {port: inverted}}\n"
       "links: [image.value -> invert.image, invert.image -> inverted.value]\n";
   EXPECT_EQ(setNetYaml(plain), plain);
   ASSERT_TRUE(waitFor([&] { return inverted.count() == before + 1; }, 5.0));
@@ -148,7 +148,7 @@ TEST(ExecutorNodelet, InternalPortsArePublishedWhileSubscribed) {
   ASSERT_TRUE(waitFor([&] { return ros::topic::waitForMessage<sensor_msgs::Image>("exec_param/out/binary", nh,
                                                                                    ros::Duration(0.2)) != nullptr; },
                       10.0));
-  // Re-run the Executor block: the inner net's cached values go out to the new subscriber.
+  // Re-run the SubNet block: the inner net's cached values go out to the new subscriber.
   std_srvs::Trigger run;
   ASSERT_TRUE(waitFor([&] { return ros::service::call("exec_param/run", run) && run.response.success; }, 10.0))
       << run.response.message;

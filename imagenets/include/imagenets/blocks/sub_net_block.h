@@ -1,5 +1,5 @@
-// imagenets/Executor, the ImageNet Executor block (paper 3.5): runs a net file as one block of
-// another net. The inner net's port blocks (NetPort: imagenets/ExecutorInput / ExecutorOutput)
+// imagenets/SubNet, the sub-net block (the paper's ImageNet Executor, 3.5): runs a net file as one block of
+// another net. The inner net's port blocks (NetPort: imagenets/SubNetInput / SubNetOutput)
 // become this block's ports. With `repeat: N` the inner net runs N times per run (paper 4.2, Fig.
 // 4.3) and each output whose type has a collector (collectors.h) also comes as the collection of
 // its N results (`<port>_all`), so a downstream block can take their mean or median. Up to

@@ -1,5 +1,5 @@
-// imagenets/ExecutorInput and imagenets/ExecutorOutput: the ports of a sub-net (paper 3.5). Each
-// becomes a port of the outer imagenets/Executor block: the outer block feeds an input's `value`,
+// imagenets/SubNetInput and imagenets/SubNetOutput: the ports of a sub-net (paper 3.5). Each
+// becomes a port of the outer imagenets/SubNet block: the outer block feeds an input's `value`,
 // and reads an output's `value`; the value passes through unchanged (same pointer).
 #pragma once
 
