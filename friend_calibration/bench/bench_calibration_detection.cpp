@@ -87,9 +87,11 @@ Figures measure(const std::vector<CalibrationView>& views, const Detect& detect)
 
 }  // namespace
 
-// Argument (optional): run only the variants whose name contains it (e.g. for a profiler).
+// Arguments (optional): run only the variants whose name contains the first, and measure each the
+// second times (for a profiler: `perf record -D 6000 ... bench_calibration_detection default 20`).
 int main(int argc, char** argv) {
   const char* only_variant = argc > 1 ? argv[1] : nullptr;
+  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 1;
   const CalibrationViews data = renderCalibrationViews();
   const std::vector<CalibrationView>& views = data.views;
   int reflections = 0;
@@ -181,6 +183,7 @@ int main(int argc, char** argv) {
   for (const auto& v : variants) {
     if (only_variant && v.name.find(only_variant) == std::string::npos) continue;
     measure(views, v.detect);  // warm-up (allocations, caches)
+    for (int r = 1; r < repeats; ++r) measure(views, v.detect);
     print(v.name, measure(views, v.detect));
   }
   return 0;

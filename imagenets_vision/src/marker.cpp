@@ -577,7 +577,7 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   cv::Mat dark = binary == 0;
   std::vector<std::vector<cv::Point>> contours;
   std::vector<cv::Vec4i> hierarchy;
-  cv::findContours(dark, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE);
+  cv::findContours(dark, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
 
   Candidate best;
   best.confidence = -1;
@@ -585,9 +585,11 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   for (size_t ci = 0; ci < contours.size(); ++ci) {
     if (hierarchy[ci][3] >= 0) continue;  // a hole's boundary, not a region's outline
     const auto& contour = contours[ci];
-    if (contour.size() < 4 * options.min_side_px) continue;
+    if (contour.size() < 4) continue;
+    const double perimeter = cv::arcLength(contour, true);
+    if (perimeter < 4 * options.min_side_px) continue;
     std::vector<cv::Point> approx;
-    cv::approxPolyDP(contour, approx, 0.05 * cv::arcLength(contour, true), true);
+    cv::approxPolyDP(contour, approx, 0.05 * perimeter, true);
     if (approx.size() != 4 || !cv::isContourConvex(approx)) continue;
     bool ok = true;
     for (int k = 0; k < 4 && ok; ++k) {
