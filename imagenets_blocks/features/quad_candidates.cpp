@@ -2,6 +2,7 @@
 
 #include "imagenets/blocks/image.h"
 #include "imagenets/register_block.h"
+#include "imagenets/vision/quadrilateral.h"
 #include "polygon_ports.h"
 
 namespace imagenets {
@@ -30,27 +31,17 @@ class QuadCandidates : public Block {
     const double epsilon = ctx.property<double>("epsilon"), min_side = ctx.property<double>("min_side");
     const double min_area = ctx.property<double>("min_area");
     const int window = ctx.property<int>("refine_window");
-    const cv::Rect bounds(0, 0, gray.cols, gray.rows);
-
+    // Corners too near the border cannot be refined reliably (and the quad may be cut off).
+    const cv::Rect2f inside(window + 1, window + 1, gray.cols - 2 * window - 2, gray.rows - 2 * window - 2);
     std::vector<std::pair<double, std::vector<cv::Point2f>>> quads;
     for (const auto& c : contours) {
-      if (c.size() < 4) continue;
-      std::vector<cv::Point2f> approx;
-      cv::approxPolyDP(c, approx, epsilon * cv::arcLength(c, true), true);
-      if (approx.size() != 4 || !cv::isContourConvex(approx)) continue;
-      const double area = std::abs(cv::contourArea(approx));
+      const auto corners = marker::convexQuadrilateral(c, epsilon, min_side, inside);
+      if (!corners) continue;
+      std::vector<cv::Point2f> quad(corners->begin(), corners->end());
+      const double area = std::abs(cv::contourArea(quad));
       if (area < min_area) continue;
-      bool ok = true;
-      for (int i = 0; i < 4 && ok; ++i) {
-        ok = cv::norm(approx[i] - approx[(i + 1) % 4]) >= min_side;
-        // Corners too near the border cannot be refined reliably (and the quad may be cut off).
-        ok = ok && bounds.contains(cv::Point(cvRound(approx[i].x), cvRound(approx[i].y))) &&
-             approx[i].x >= window + 1 && approx[i].y >= window + 1 && approx[i].x < gray.cols - window - 1 &&
-             approx[i].y < gray.rows - window - 1;
-      }
-      if (!ok) continue;
-      orderClockwise(approx);
-      quads.emplace_back(area, approx);
+      startTopLeft(quad);
+      quads.emplace_back(area, quad);
     }
     if (window > 0 && !quads.empty()) {
       std::vector<cv::Point2f> corners;
@@ -68,11 +59,8 @@ class QuadCandidates : public Block {
   }
 
  private:
-  static void orderClockwise(std::vector<cv::Point2f>& q) {
-    // Positive signed area in image coordinates (y down) = clockwise on screen.
-    double signed_area = 0;
-    for (int i = 0; i < 4; ++i) signed_area += q[i].x * q[(i + 1) % 4].y - q[(i + 1) % 4].x * q[i].y;
-    if (signed_area < 0) std::reverse(q.begin(), q.end());
+  // Clockwise already (convexQuadrilateral): start with the corner nearest the top-left.
+  static void startTopLeft(std::vector<cv::Point2f>& q) {
     int first = 0;
     for (int i = 1; i < 4; ++i) {
       if (q[i].x + q[i].y < q[first].x + q[first].y) first = i;

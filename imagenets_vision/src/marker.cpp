@@ -10,6 +10,7 @@
 // (confidence and orientation). The pose: IPPE on the 8 points (both solutions), each refined by
 // Levenberg-Marquardt, the lower reprojection error wins.
 #include "imagenets/vision/marker.h"
+#include "imagenets/vision/quadrilateral.h"
 
 #include <algorithm>
 #include <cmath>
@@ -584,24 +585,11 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   std::vector<Candidate> rescuable;
   for (size_t ci = 0; ci < contours.size(); ++ci) {
     if (hierarchy[ci][3] >= 0) continue;  // a hole's boundary, not a region's outline
-    const auto& contour = contours[ci];
-    if (contour.size() < 4) continue;
-    const double perimeter = cv::arcLength(contour, true);
-    if (perimeter < 4 * options.min_side_px) continue;
-    std::vector<cv::Point> approx;
-    cv::approxPolyDP(contour, approx, 0.05 * perimeter, true);
-    if (approx.size() != 4 || !cv::isContourConvex(approx)) continue;
-    bool ok = true;
-    for (int k = 0; k < 4 && ok; ++k) {
-      const cv::Point p = approx[k], q = approx[(k + 1) % 4];
-      ok = std::hypot(p.x - q.x, p.y - q.y) >= options.min_side_px && p.x > 2 && p.y > 2 &&
-           p.x < gray.cols - 3 && p.y < gray.rows - 3;
-    }
-    if (!ok) continue;
+    const auto corners = convexQuadrilateral(contours[ci], 0.05, options.min_side_px,
+                                             cv::Rect2f(3, 3, gray.cols - 6, gray.rows - 6));
+    if (!corners) continue;
     ++result.candidates;
-    std::vector<cv::Point2d> quad(approx.begin(), approx.end());
-    // Clockwise in the image (positive shoelace area with y down).
-    if (cv::contourArea(approx, true) < 0) std::reverse(quad.begin(), quad.end());
+    const std::vector<cv::Point2d> quad(corners->begin(), corners->end());
 
     Candidate cand;
     std::vector<cv::Point2d> outer_px = quad;
