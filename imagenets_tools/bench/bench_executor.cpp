@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 #include <std_msgs/Float64.h>
 
+#include "imagenets/bench_summary.h"
 #include "imagenets/blocks/image.h"
 #include "imagenets/executor.h"
 #include "imagenets/registry.h"
@@ -104,6 +105,12 @@ int main(int argc, char** argv) {
                   "direct calls %.3f us/block; overhead %.2f us/block (target <= %.1f)\n",
                   n, threads, exec_us / n, watched_us / n, direct_us / n, (exec_us - direct_us) / n,
                   threads == 1 ? 0.5 : 1.0);
+      const double target = threads == 1 ? 0.5 : 1.0;
+      char target_text[32];
+      std::snprintf(target_text, sizeof(target_text), "<= %.1f us/block", target);
+      const std::string chain = "executor, chain of 100 trivial blocks, " + std::to_string(threads) + " thread(s), us/block";
+      printSummaryRow(chain + " vs direct calls", exec_us / n, direct_us / n, target_text, exec_us / n <= target);
+      printSummaryRow(chain + ", with an observer vs without", watched_us / n, exec_us / n, "", false);
     }
   }
 
@@ -141,6 +148,8 @@ links: [gray.image -> blur.image, blur.image -> threshold.image]
                 "messages per run, last run's kept, freed memory kept by malloc, 1 calling thread: executor %.0f us, same calls by hand "
                 "%.0f us, ratio %.2f (overhead %.1f us per block)\n",
                 exec_us, direct_us, exec_us / direct_us, (exec_us - direct_us) / 3);
+    printSummaryRow("executor, image chain gray->blur->threshold 1024x768, us, vs the same calls by hand", exec_us,
+                    direct_us, "ratio <= 1.05", exec_us <= 1.05 * direct_us);
   }
 
   // 3. Two independent image branches: 1 thread vs 2 threads.
@@ -166,6 +175,7 @@ links: [gray.image -> blur_a.image, gray.image -> blur_b.image, blur_a.image -> 
     std::printf("two independent branches (blur 21x21 + threshold): 1 thread %.0f us, 2 threads %.0f us, "
                 "speed-up %.2fx\n",
                 t[1], t[2], t[1] / t[2]);
+    printSummaryRow("executor, two independent branches, us, 2 threads vs 1", t[2], t[1], "", false);
   }
 
   // 4. Feedback sweep strategies: threshold 40..80 scored by segmentation quality.
