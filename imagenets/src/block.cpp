@@ -4,10 +4,10 @@
 
 namespace imagenets {
 
-Context::Context(std::string block_name, const std::vector<PortSpec>& inputs,
+Context::Context(const std::string& block_name, const std::vector<PortSpec>& inputs,
                  const std::vector<PortSpec>& outputs, std::vector<Value> input_values,
-                 PropertyValues properties)
-    : block_name_(std::move(block_name)),
+                 std::shared_ptr<const PropertyValues> properties)
+    : block_name_(block_name),
       inputs_(inputs),
       outputs_(outputs),
       input_values_(std::move(input_values)),
@@ -45,8 +45,8 @@ RunChannel Context::innerChannel() const {
 }
 
 const PropertyValue& Context::propertyValue(const std::string& name) const {
-  auto it = properties_.find(name);
-  if (it == properties_.end()) {
+  auto it = properties_->find(name);
+  if (it == properties_->end()) {
     throw std::logic_error("block '" + block_name_ + "' has no property '" + name + "'");
   }
   return it->second;
@@ -106,21 +106,25 @@ PropertySpec& Block::addPropertySpec(PropertySpec spec) {
   if (findProperty(spec.name())) throw std::logic_error("property '" + spec.name() + "' declared twice");
   {
     std::lock_guard<std::mutex> lock(values_mutex_);
-    values_[spec.name()] = spec.defaultValue();
+    auto values = std::make_shared<PropertyValues>(*values_);
+    (*values)[spec.name()] = spec.defaultValue();
+    values_ = std::move(values);
   }
   property_specs_.push_back(std::move(spec));
   return property_specs_.back();
 }
 
-PropertyValues Block::propertyValues() const {
+PropertyValues Block::propertyValues() const { return *propertySnapshot(); }
+
+std::shared_ptr<const PropertyValues> Block::propertySnapshot() const {
   std::lock_guard<std::mutex> lock(values_mutex_);
   return values_;
 }
 
 PropertyValue Block::propertyValue(const std::string& name) const {
-  std::lock_guard<std::mutex> lock(values_mutex_);
-  auto it = values_.find(name);
-  if (it == values_.end()) throw std::logic_error("no property '" + name + "'");
+  const auto values = propertySnapshot();
+  auto it = values->find(name);
+  if (it == values->end()) throw std::logic_error("no property '" + name + "'");
   return it->second;
 }
 
@@ -129,7 +133,9 @@ void Block::setProperty(const std::string& name, const PropertyValue& value) {
   if (!spec) throw PropertyError("unknown property '" + name + "'");
   PropertyValue checked = spec->validate(value);
   std::lock_guard<std::mutex> lock(values_mutex_);
-  values_[name] = std::move(checked);
+  auto values = std::make_shared<PropertyValues>(*values_);
+  (*values)[name] = std::move(checked);
+  values_ = std::move(values);
 }
 
 }  // namespace imagenets

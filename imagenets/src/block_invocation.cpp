@@ -15,33 +15,33 @@ int missingInput(const Block& block, const std::vector<Value>& inputs) {
 }
 
 BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<Value> inputs,
-                            PropertyValues properties, RunChannel channel, const std::function<void()>& starting) {
+                            std::shared_ptr<const PropertyValues> properties, InvocationOptions options) {
   BlockInvocation result;
-  result.outputs.resize(block.outputs().size());
   inputs.resize(block.inputs().size());
   result.missing_input = missingInput(block, inputs);
   if (result.missing_input >= 0) {
     result.status = BlockStatus::NotRun;
     result.error = result.message = "input '" + block.inputs()[result.missing_input].name + "' has no value";
+    result.outputs.resize(block.outputs().size());
     return result;
   }
-  const std::function<bool()> cancelled = channel.cancelled;
-  Context ctx(name, block.inputs(), block.outputs(), std::move(inputs), std::move(properties));
-  ctx.setRunChannel(std::move(channel));
-  if (starting) starting();
+  static const auto no_properties = std::make_shared<const PropertyValues>();
+  Context ctx(name, block.inputs(), block.outputs(), std::move(inputs), properties ? std::move(properties) : no_properties);
+  ctx.setRunChannel(std::move(options.channel));
+  if (options.starting) options.starting();
   const auto start = std::chrono::steady_clock::now();
-  const double cpu_start = threadCpuMs();
+  const double cpu_start = options.cpu_time ? threadCpuMs() : 0.0;
   try {
     block.process(ctx);
   } catch (const RunCancelled&) {
-    result.error = cancelled && cancelled() ? "cancelled" : "stopped as if cancelled, but the run was not cancelled";
-    result.cancelled = cancelled && cancelled();
+    result.cancelled = ctx.cancelled();
+    result.error = result.cancelled ? "cancelled" : "stopped as if cancelled, but the run was not cancelled";
   } catch (const std::exception& e) {
     result.error = e.what();
   } catch (...) {
     result.error = "unknown exception";
   }
-  result.cpu_ms = threadCpuMs() - cpu_start;  // inside the wall-time interval
+  if (options.cpu_time) result.cpu_ms = threadCpuMs() - cpu_start;  // inside the wall-time interval
   result.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.processed = true;
   if (result.cancelled) {
@@ -54,6 +54,7 @@ BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<V
     result.status = BlockStatus::Failed;
     result.message = "block '" + name + "' (" + (block.info() ? block.info()->type : std::string("?")) + "): " + result.error;
   }
+  result.outputs.resize(block.outputs().size());
   return result;
 }
 

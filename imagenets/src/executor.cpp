@@ -16,7 +16,8 @@
 
 namespace imagenets {
 
-Executor::Executor(std::unique_ptr<Net> net, ExecutorOptions options) : net_(std::move(net)) {
+Executor::Executor(std::unique_ptr<Net> net, ExecutorOptions options)
+    : net_(std::move(net)), cpu_time_(options.cpu_time) {
   const size_t n = net_->nodes().size();
   int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
   // The thread that calls run() works too (it helps while it waits): N threads = N - 1 workers.
@@ -60,6 +61,10 @@ Executor::Executor(std::unique_ptr<Net> net, ExecutorOptions options) : net_(std
     feedback_region_[i] = region;
   }
   if (!errors.empty()) throw NetError(errors);
+  trial_schedule_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (net_->node(i).feedback) trial_schedule_[i] = plan(feedback_region_[i], true);
+  }
 }
 
 std::unique_ptr<Executor> Executor::loadFile(const std::string& path, ExecutorOptions options) {
@@ -102,7 +107,7 @@ RunReport Executor::runBlockOnly(const std::string& block) {
   running_ = true;
   RunReport report;
   unfinished_.assign(unfinished_.size(), 0);
-  execute({n}, outputs_, report, nullptr);
+  execute(plan({n}, false), outputs_, report, nullptr);
   // What ran is up to date unless cancelled or it read inputs that an out-of-date block above it
   // will change on the next run; what reads its new outputs is not.
   std::vector<int> ran{n};
@@ -140,7 +145,11 @@ RunReport Executor::runOutOfDate() {
   }
   RunReport report;
   unfinished_.assign(unfinished_.size(), 0);
-  execute(nodes, outputs_, report, nullptr);
+  if (nodes != scheduled_nodes_ || run_schedule_.providers.empty()) {
+    run_schedule_ = plan(nodes, false);
+    scheduled_nodes_ = nodes;
+  }
+  execute(run_schedule_, outputs_, report, nullptr);
   // A cancelled block keeps its previous outputs but stays out of date: the next run resumes.
   for (int n : nodes) out_of_date_[n] = unfinished_[n] != 0;
   report.cancelled = std::find(unfinished_.begin(), unfinished_.end(), 1) != unfinished_.end();
@@ -269,16 +278,16 @@ BlockStats Executor::statsOf(int node) const {
   return stats_[node];
 }
 
-BlockStats Executor::record(int node, BlockStatus status, const std::string& message, double ms, bool counted,
-                            double cpu_ms) {
+void Executor::record(int node, BlockStatus status, const std::string& message, double ms, bool counted,
+                      double cpu_ms) {
   std::lock_guard<std::mutex> lock(stats_mutex_);
   stats_[node].record(status, message, ms, counted, cpu_ms);
-  return stats_[node];
 }
 
 void Executor::finish(int node, BlockStatus status, const std::string& message, double ms, bool counted,
                       double cpu_ms) {
-  emitBlockEvent(RunEventKind::BlockFinished, node, record(node, status, message, ms, counted, cpu_ms));
+  record(node, status, message, ms, counted, cpu_ms);
+  if (watched()) emitBlockEvent(RunEventKind::BlockFinished, node, statsOf(node));
 }
 
 void Executor::skipCancelled(int unit, RunReport& report) {
@@ -311,19 +320,22 @@ std::string Executor::explainMissing(int node, int input) const {
 void Executor::runNode(int node, Store& store, RunReport& report, const Overrides* overrides) {
   Net::Node& n = net_->node(node);
   const bool trial = overrides != nullptr;  // a feedback trial reports through FeedbackTrial events only
-  PropertyValues properties = n.block->propertyValues();
+  std::shared_ptr<const PropertyValues> properties = n.block->propertySnapshot();
   if (overrides) {
     auto it = overrides->find(node);
     if (it != overrides->end()) {
-      for (const auto& kv : it->second) properties[kv.first] = kv.second;
+      auto changed = std::make_shared<PropertyValues>(*properties);
+      for (const auto& kv : it->second) (*changed)[kv.first] = kv.second;
+      properties = std::move(changed);
     }
   }
-  BlockInvocation run = invokeBlock(
-      *n.block, n.name, gatherInputs(node, store), std::move(properties),
-      RunChannel{trial ? RunObserver() : [this](const RunEvent& e) { emit(e); }, [this] { return cancelled(); }},
-      [&] {
-        if (!trial && watched()) emitBlockEvent(RunEventKind::BlockStarted, node, statsOf(node));
-      });
+  // What nobody watches is not built: no events, no CPU clock (unless asked for).
+  InvocationOptions options;
+  options.channel = RunChannel{trial ? RunObserver() : [this](const RunEvent& e) { emit(e); }, [this] { return cancelled(); }};
+  const bool shown = watched();
+  if (!trial && shown) options.starting = [this, node] { emitBlockEvent(RunEventKind::BlockStarted, node, statsOf(node)); };
+  options.cpu_time = cpu_time_ || shown;
+  BlockInvocation run = invokeBlock(*n.block, n.name, gatherInputs(node, store), std::move(properties), std::move(options));
   if (run.cancelled) {
     // Stopped early on cancel: previous outputs kept, out of date (a trial simply gives no score).
     if (!trial) skipCancelled(node, report);
@@ -339,20 +351,20 @@ void Executor::runNode(int node, Store& store, RunReport& report, const Override
   else report.not_run.push_back(n.name + ": " + message);
 }
 
-void Executor::execute(const std::vector<int>& nodes, Store& store, RunReport& report, const Overrides* overrides) {
-  const bool trial = overrides != nullptr;  // inside a trial, a feedback node runs as a plain block
+Executor::Schedule Executor::plan(const std::vector<int>& nodes, bool trial) const {
   const size_t count = net_->nodes().size();
   std::vector<char> in_set(count, 0);
   for (int n : nodes) in_set[n] = 1;
   // Outside trials, a feedback node stands for its whole region: the region runs as one unit.
   auto unitOf = [&](int n) { return !trial && absorbed_by_[n] >= 0 && in_set[absorbed_by_[n]] ? absorbed_by_[n] : n; };
 
-  std::vector<int> units;
+  Schedule schedule;
+  schedule.providers.assign(count, 0);
+  schedule.dependents.resize(count);
   std::vector<std::set<int>> providers(count);
-  std::vector<std::vector<int>> dependents(count);
   for (int n : nodes) {
     const int u = unitOf(n);
-    if (u == n) units.push_back(n);
+    if (u == n) schedule.units.push_back(n);
     std::vector<int> feeding;
     for (const Endpoint& link : net_->node(n).input_links) {
       if (link.valid()) feeding.push_back(link.node);
@@ -366,44 +378,56 @@ void Executor::execute(const std::vector<int>& nodes, Store& store, RunReport& r
     for (int p : feeding) {
       if (!in_set[p]) continue;
       const int pu = unitOf(p);
-      if (pu != u && providers[u].insert(pu).second) dependents[pu].push_back(u);
+      if (pu != u && providers[u].insert(pu).second) schedule.dependents[pu].push_back(u);
     }
   }
-  if (units.empty()) return;
+  for (int u : schedule.units) schedule.providers[u] = providers[u].size();
+  return schedule;
+}
 
-  std::vector<size_t> waiting(count, 0);
-  for (int u : units) waiting[u] = providers[u].size();
+void Executor::runUnit(int unit, Store& store, RunReport& report, const Overrides* overrides) {
+  const bool trial = overrides != nullptr;  // inside a trial, a feedback node runs as a plain block
+  // After a cancel nothing starts: the rest of the set is skipped (a trial's blocks silently).
+  if (cancelled()) {
+    if (!trial) skipCancelled(unit, report);
+  } else if (!trial && net_->node(unit).feedback) {
+    runFeedback(unit, store, report);
+  } else {
+    runNode(unit, store, report, overrides);
+  }
+}
 
-  // Whoever finishes a unit starts the units it made ready, at once: a unit that blocks its
-  // thread (a sub-net waiting for its twin, a camera) must not hold back the rest of the net.
+void Executor::execute(const Schedule& schedule, Store& store, RunReport& report, const Overrides* overrides) {
+  if (schedule.units.empty()) return;
+  std::vector<size_t> waiting = schedule.providers;
   std::mutex schedule_mutex;
-  size_t remaining = units.size();
-  std::function<void(int)> launch = [&](int u) {
-    pool_->post([&, u] {
-      // After a cancel nothing starts: the rest of the set is skipped (a trial's blocks silently).
-      if (cancelled()) {
-        if (!trial) skipCancelled(u, report);
-      } else if (!trial && net_->node(u).feedback) {
-        runFeedback(u, store, report);
-      } else {
-        runNode(u, store, report, overrides);
-      }
-      std::vector<int> ready;
+  size_t remaining = schedule.units.size();
+  // Whoever finishes a unit goes on with one unit it made ready (a chain stays on its thread, with
+  // no hand-over) and posts the others at once: a unit that blocks its thread (a sub-net waiting
+  // for its twin, a camera) must not hold back the rest of the net.
+  std::function<void(int)> runFrom = [&](int unit) {
+    for (int u = unit; u >= 0;) {
+      runUnit(u, store, report, overrides);
+      int next = -1;
+      std::vector<int> others;
       {
         std::lock_guard<std::mutex> lock(schedule_mutex);
         --remaining;
-        for (int d : dependents[u]) {
-          if (--waiting[d] == 0) ready.push_back(d);
+        for (int d : schedule.dependents[u]) {
+          if (--waiting[d] != 0) continue;
+          if (next < 0) next = d;
+          else others.push_back(d);
         }
       }
-      for (int d : ready) launch(d);
-    });
+      for (int d : others) pool_->post([&runFrom, d] { runFrom(d); });
+      u = next;
+    }
   };
   std::vector<int> first;  // collected before any starts: running units change `waiting`
-  for (int u : units) {
+  for (int u : schedule.units) {
     if (waiting[u] == 0) first.push_back(u);
   }
-  for (int u : first) launch(u);
+  for (int u : first) pool_->post([&runFrom, u] { runFrom(u); });
   pool_->helpUntil([&] {
     std::lock_guard<std::mutex> lock(schedule_mutex);
     return remaining == 0;
@@ -429,7 +453,7 @@ double Executor::runTrial(int node, double candidate, const Store& base, Store& 
   }
   for (int m : feedback_region_[node]) trial_store[m].assign(net_->node(m).block->outputs().size(), Value());
   RunReport trial_report;
-  execute(feedback_region_[node], trial_store, trial_report, &overrides);
+  execute(trial_schedule_[node], trial_store, trial_report, &overrides);
   const Endpoint score = net_->resolveOutput(f.score_block + "." + f.score_port);
   auto value = trial_store[score.node][score.port].as<std_msgs::Float64>();
   return value && std::isfinite(value->data) ? value->data : std::numeric_limits<double>::quiet_NaN();
@@ -478,7 +502,9 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
   });
   const size_t chunk_size = f.parallel ? static_cast<size_t>(2 * threads()) : 1;
   Store best_store;
-  for (int m : region) emitBlockEvent(RunEventKind::BlockStarted, m, statsOf(m));
+  if (watched()) {
+    for (int m : region) emitBlockEvent(RunEventKind::BlockStarted, m, statsOf(m));
+  }
   for (auto batch = search.nextBatch(); !batch.empty() && !cancelled(); batch = search.nextBatch()) {
     for (size_t first = 0; first < batch.size() && !search.finished(); first += chunk_size) {
       const size_t count = std::min(chunk_size, batch.size() - first);

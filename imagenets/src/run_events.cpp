@@ -1,5 +1,6 @@
 #include "imagenets/run_events.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace imagenets {
@@ -39,9 +40,12 @@ void BlockStats::record(BlockStatus new_status, const std::string& new_message, 
   if (processed) {
     ++runs;
     last_ms = ms;
-    last_cpu_ms = cpu_ms;
     mean_ms += (ms - mean_ms) / static_cast<double>(runs);
-    mean_cpu_ms += (cpu_ms - mean_cpu_ms) / static_cast<double>(runs);
+  }
+  if (processed && !std::isnan(cpu_ms)) {
+    ++cpu_runs;
+    last_cpu_ms = cpu_ms;
+    mean_cpu_ms += (cpu_ms - mean_cpu_ms) / static_cast<double>(cpu_runs);
   }
 }
 

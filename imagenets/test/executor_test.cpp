@@ -167,6 +167,43 @@ blocks:
   EXPECT_TRUE(e->output("right.value"));
 }
 
+TEST_F(ExecutorTest, BlocksMadeReadyTogetherRunInParallel) {
+  // The thread that finishes `a` goes on with one barrier and must hand the other to the second
+  // thread at once, else the first barrier waits alone until its timeout.
+  auto e = load(R"(
+blocks:
+  a: {type: test/Constant, properties: {value: 1}}
+  left:  {type: test/Barrier, properties: {group: ready_together_test, parties: 2}}
+  right: {type: test/Barrier, properties: {group: ready_together_test, parties: 2}}
+  after: {type: test/Scale}
+links: [a.value -> left.in, a.value -> right.in, left.value -> after.in]
+)", 2);
+  RunReport r = e->run();
+  EXPECT_TRUE(r.ok()) << (r.failed.empty() ? "" : r.failed[0]);
+  EXPECT_EQ(r.ran.size(), 4u);
+  EXPECT_DOUBLE_EQ(value(*e, "after.out"), 1.0);
+}
+
+TEST_F(ExecutorTest, CpuTimeIsMeasuredOnlyWhenShown) {
+  // Nobody watches: no CPU clock read (cpu_runs stays 0), wall time still kept.
+  auto e = load(kChain);
+  e->run();
+  EXPECT_EQ(e->stats("b").runs, 1u);
+  EXPECT_EQ(e->stats("b").cpu_runs, 0u);
+  // An observer shows the stats: measured.
+  const int id = e->addObserver([](const RunEvent&) {});
+  e->runBlock("b");
+  EXPECT_EQ(e->stats("b").runs, 2u);
+  EXPECT_EQ(e->stats("b").cpu_runs, 1u);
+  EXPECT_GE(e->stats("b").last_cpu_ms, 0.0);
+  e->removeObserver(id);
+  // Asked for without an observer.
+  auto measured = std::make_unique<Executor>(Net::build(parseNetText(kChain, "test.yaml", "")),
+                                             ExecutorOptions{1, /*cpu_time=*/true});
+  measured->run();
+  EXPECT_EQ(measured->stats("c").cpu_runs, 1u);
+}
+
 TEST_F(ExecutorTest, StatisticsCountRunsAndTimes) {
   auto e = load(kChain);
   e->run();

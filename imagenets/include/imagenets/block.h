@@ -43,9 +43,10 @@ std::string portList(const std::vector<PortSpec>& ports);
 // parallel), so a block keeps per-run data here, not in members.
 class Context {
  public:
-  Context(std::string block_name, const std::vector<PortSpec>& inputs,
+  // `block_name` and the port lists must outlive the context (they are the block's own).
+  Context(const std::string& block_name, const std::vector<PortSpec>& inputs,
           const std::vector<PortSpec>& outputs, std::vector<Value> input_values,
-          PropertyValues properties);
+          std::shared_ptr<const PropertyValues> properties);
 
   const std::string& blockName() const { return block_name_; }
 
@@ -74,7 +75,7 @@ class Context {
                            "' read with the wrong C++ type");
   }
   const PropertyValue& propertyValue(const std::string& name) const;
-  const PropertyValues& properties() const { return properties_; }
+  const PropertyValues& properties() const { return *properties_; }
 
   // For a block that runs something inside (a sub-net): emit() passes that run's events to whoever
   // watches this run, with this block's name prefixed to the event's block path ("outer/inner");
@@ -89,12 +90,12 @@ class Context {
   std::vector<Value>& outputs() { return output_values_; }
 
  private:
-  std::string block_name_;
+  const std::string& block_name_;
   const std::vector<PortSpec>& inputs_;
   const std::vector<PortSpec>& outputs_;
   std::vector<Value> input_values_;
   std::vector<Value> output_values_;
-  PropertyValues properties_;
+  std::shared_ptr<const PropertyValues> properties_;
   RunChannel channel_;
 };
 
@@ -140,6 +141,9 @@ class Block {
 
   // Current property values (thread-safe). setProperty validates and throws PropertyError.
   PropertyValues propertyValues() const;
+  // The same, shared and never changed afterwards: a setProperty makes a new one (copy on write),
+  // so a run reads its block's properties without copying them.
+  std::shared_ptr<const PropertyValues> propertySnapshot() const;
   PropertyValue propertyValue(const std::string& name) const;
   void setProperty(const std::string& name, const PropertyValue& value);
 
@@ -184,7 +188,7 @@ class Block {
   std::vector<PortSpec> inputs_, outputs_;
   std::vector<PropertySpec> property_specs_;
   mutable std::mutex values_mutex_;
-  PropertyValues values_;
+  std::shared_ptr<const PropertyValues> values_ = std::make_shared<const PropertyValues>();
   const BlockInfo* info_ = nullptr;
 };
 

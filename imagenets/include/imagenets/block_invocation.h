@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,19 +20,29 @@ struct BlockInvocation {
   bool cancelled = false;   // NotRun: the block stopped early because its run was cancelled
   bool processed = false;   // process() was called (counts as a run in the stats, failed or not)
   double ms = 0.0;          // time spent in process()
-  double cpu_ms = 0.0;      // CPU time of the calling thread in process() (not of threads it handed work to)
+  // CPU time of the calling thread in process() (not of threads it handed work to); NaN when not
+  // asked for (InvocationOptions::cpu_time).
+  double cpu_ms = std::numeric_limits<double>::quiet_NaN();
   std::vector<Value> outputs;  // per declared output port; all empty unless Ok
 };
 
 // The first required input of `block` without a value, or -1.
 int missingInput(const Block& block, const std::vector<Value>& inputs);
 
-// Checks the required inputs (per declared input port), builds the Context (with `channel` for
-// blocks that run something inside), calls `starting` and then process(), timed, catching every
-// error; the outputs are checked against the declared ports as the block sets them (name, type).
-// Never throws for what the block does.
+// What a host adds to a call beyond the block and its data.
+struct InvocationOptions {
+  RunChannel channel;              // for blocks that run something inside (events out, cancel in)
+  std::function<void()> starting;  // called just before process(), after the inputs were checked
+  // Read the thread's CPU clock around process(): a system call (about 0.5 us each way), so a
+  // host asks for it only when the time is shown.
+  bool cpu_time = true;
+};
+
+// Checks the required inputs (per declared input port), builds the Context, calls
+// `options.starting` and then process(), timed, catching every error; the outputs are checked
+// against the declared ports as the block sets them (name, type). Never throws for what the block
+// does. `properties` null: the block has none.
 BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<Value> inputs,
-                            PropertyValues properties, RunChannel channel = {},
-                            const std::function<void()>& starting = {});
+                            std::shared_ptr<const PropertyValues> properties, InvocationOptions options = {});
 
 }  // namespace imagenets

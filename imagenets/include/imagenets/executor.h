@@ -13,6 +13,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -37,6 +38,9 @@ struct RunReport {
 
 struct ExecutorOptions {
   int threads = 0;  // 0 = number of cores
+  // Measure each block's CPU time (BlockStats::last_cpu_ms) also when no observer watches the runs
+  // (with one it always is): two system calls per block, about 1 us.
+  bool cpu_time = false;
 };
 
 class Executor {
@@ -102,13 +106,22 @@ class Executor {
  private:
   using Store = std::vector<std::vector<Value>>;        // per node, per output port
   using Overrides = std::map<int, PropertyValues>;     // property values for one trial
+  // Who waits for whom among the units of one execute() call (a unit: a block, or a feedback
+  // block with its region); built once per set of nodes, not per run.
+  struct Schedule {
+    std::vector<int> units;                    // in topological order
+    std::vector<size_t> providers;             // per node: how many units of the set feed it
+    std::vector<std::vector<int>> dependents;  // per node: the units it feeds
+  };
+  Schedule plan(const std::vector<int>& nodes, bool trial) const;
 
   void markOutOfDate(int node);
   RunReport runOutOfDate();
-  // Runs `nodes` in event flow against `store`: a node starts when the nodes of the set that feed
-  // it are done; independent nodes run in parallel. Nodes outside the set keep their outputs. The
-  // core of run(), and of every feedback trial (with `overrides`, into a copy of the store).
-  void execute(const std::vector<int>& nodes, Store& store, RunReport& report, const Overrides* overrides);
+  // Runs the schedule's units in event flow against `store`: a unit starts when the units that
+  // feed it are done; independent units run in parallel. Nodes outside the set keep their outputs.
+  // The core of run(), and of every feedback trial (with `overrides`, into a copy of the store).
+  void execute(const Schedule& schedule, Store& store, RunReport& report, const Overrides* overrides);
+  void runUnit(int unit, Store& store, RunReport& report, const Overrides* overrides);
   void runNode(int node, Store& store, RunReport& report, const Overrides* overrides);
   // Feedback (paper 3.4): sweeps the node's property over its candidates, each trial running the
   // region between the node and its score; keeps the best trial's outputs in `store`.
@@ -121,11 +134,13 @@ class Executor {
   // "input 'x' has no value (block 'b' produced none)" / "(not linked, not set)".
   std::string explainMissing(int node, int input) const;
   BlockStats statsOf(int node) const;
-  // Records a block's status; `counted` adds a process() call to its timings. Returns the stats.
-  BlockStats record(int node, BlockStatus status, const std::string& message, double ms, bool counted,
-                    double cpu_ms = 0.0);
+  // Records a block's status; `counted` adds a process() call to its timings (cpu_ms NaN: not
+  // measured).
+  void record(int node, BlockStatus status, const std::string& message, double ms, bool counted,
+              double cpu_ms = std::numeric_limits<double>::quiet_NaN());
   // record() + a BlockFinished event.
-  void finish(int node, BlockStatus status, const std::string& message, double ms, bool counted, double cpu_ms = 0.0);
+  void finish(int node, BlockStatus status, const std::string& message, double ms, bool counted,
+              double cpu_ms = std::numeric_limits<double>::quiet_NaN());
   // A unit (a block, or a feedback block with its region) that a cancel kept from starting.
   void skipCancelled(int unit, RunReport& report);
   bool cancelled() const;
@@ -136,6 +151,7 @@ class Executor {
   RunReport finishRun(RunReport report);
 
   std::unique_ptr<Net> net_;
+  const bool cpu_time_;
   std::unique_ptr<ThreadPool> pool_;
   mutable std::mutex mutex_;  // serialises the public API
   Store outputs_;
@@ -143,6 +159,9 @@ class Executor {
   std::vector<bool> out_of_date_;
   std::vector<std::vector<int>> feedback_region_;  // per node with feedback: itself + path to the score
   std::vector<int> absorbed_by_;                   // node -> the feedback node whose region holds it, or -1
+  std::vector<Schedule> trial_schedule_;           // per node with feedback: its region's
+  std::vector<int> scheduled_nodes_;               // the node set of run_schedule_ (mutex_ held)
+  Schedule run_schedule_;
   mutable std::mutex stats_mutex_;
   std::vector<BlockStats> stats_;
   std::mutex report_mutex_;

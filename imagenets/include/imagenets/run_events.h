@@ -32,12 +32,17 @@ struct BlockStats {
   // CPU time of the thread that ran process(): what the block cost, whatever else the machine
   // did meanwhile. Work it handed to other threads (parallel feedback trials, a sub-net with
   // more than one thread) is not in it.
+  // Measured only when shown (an executor with an observer, or ExecutorOptions::cpu_time):
+  // cpu_runs counts the calls that were.
   double last_cpu_ms = 0.0;
   double mean_cpu_ms = 0.0;
+  size_t cpu_runs = 0;
   std::string last_error;  // the last failed process() call's message, kept after later successes
 
-  // Records one invocation; `processed`: process() was called (it counts as a run, timed).
-  void record(BlockStatus new_status, const std::string& new_message, double ms, bool processed, double cpu_ms = 0.0);
+  // Records one invocation; `processed`: process() was called (it counts as a run, timed);
+  // `cpu_ms` NaN: not measured.
+  void record(BlockStatus new_status, const std::string& new_message, double ms, bool processed,
+              double cpu_ms = std::numeric_limits<double>::quiet_NaN());
 };
 
 enum class RunEventKind {

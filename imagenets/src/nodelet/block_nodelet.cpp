@@ -206,8 +206,8 @@ class BlockHost {
       progress_.clear();
     }
     // What runs inside the block (a sub-net) reports on ~status while it runs.
-    BlockInvocation run = invokeBlock(*block_, name_, cached_inputs_, block_->propertyValues(),
-                                      RunChannel{[this](const RunEvent& e) { onInnerEvent(e); }, {}});
+    BlockInvocation run = invokeBlock(*block_, name_, cached_inputs_, block_->propertySnapshot(),
+                                      {RunChannel{[this](const RunEvent& e) { onInnerEvent(e); }, {}}});
     {
       std::lock_guard<std::mutex> lock(status_mutex_);
       running_ = false;

@@ -51,7 +51,7 @@ class BlockHarness {
       in.push_back(it == inputs_.end() ? Value{} : it->second);
     }
     outputs_.clear();
-    BlockInvocation result = invokeBlock(*block_, "test", std::move(in), block_->propertyValues());
+    BlockInvocation result = invokeBlock(*block_, "test", std::move(in), block_->propertySnapshot());
     stats_.record(result.status, result.message, result.ms, result.processed, result.cpu_ms);
     if (result.status != BlockStatus::Ok) throw BlockError(result.error);
     for (size_t i = 0; i < block_->outputs().size(); ++i) outputs_[block_->outputs()[i].name] = result.outputs[i];
