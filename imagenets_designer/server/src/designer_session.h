@@ -1,46 +1,29 @@
-// The Designer's state and requests (designer/PROTOCOL.md), apart from any network code: the net
-// being edited (NetDocument), the executor built from it, undo/redo, files, runs, watched ports.
-// The server calls handle() for one request at a time (from its worker thread) and cancel() from
-// any thread; the session answers through an Output.
-//
-// Structural edits rebuild the executor (Net::build validates them: a refused edit changes
-// nothing and returns the engine's message); property changes go to the running executor, so
-// only that block and its downstream run again.
+// The Designer's requests (designer/PROTOCOL.md), apart from any network code: each request is
+// read, handed to the part that does it (edits of the NetDocument, undo in the EditHistory, the
+// LiveNet that runs it, the NetFiles) and answered. The server calls handle() for one request at
+// a time (from its worker thread) and cancel() from any thread; the session answers through an
+// Output.
 #pragma once
 
 #include <map>
-#include <memory>
-#include <mutex>
-#include <set>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "allowed_roots.h"
-#include "imagenets/executor.h"
+#include "designer_output.h"
+#include "edit_history.h"
+#include "live_net.h"
 #include "net_document.h"
+#include "net_files.h"
+#include "request_error.h"
 
 namespace imagenets {
 namespace designer {
 
-// A request the session cannot serve: the text names what is wrong and where.
-struct RequestError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 class DesignerSession {
  public:
-  class Output {
-   public:
-    virtual ~Output() = default;
-    virtual void send(int client, const std::string& text) = 0;  // one tab
-    virtual void broadcast(const std::string& text) = 0;        // every tab
-    // Port data for one tab; `slot` ("block.port|mode") names the value, so a newer frame for the
-    // same slot replaces one not sent yet.
-    virtual void sendPortData(int client, const std::string& slot, std::shared_ptr<const std::string> frame) = 0;
-  };
+  using Output = DesignerOutput;
 
   struct Options {
     std::vector<std::string> roots;  // besides the net's folder and the package's config/
@@ -48,7 +31,6 @@ class DesignerSession {
   };
 
   DesignerSession(Output& output, Options options);
-  ~DesignerSession();
 
   // Loads the net given on the command line (a file that does not exist yet: a new net saved
   // under that name). A net that does not load leaves an empty net with the errors in the net
@@ -58,19 +40,15 @@ class DesignerSession {
   // One request (a JSON object with "op" and "id"); the reply goes to `client`.
   void handle(int client, const nlohmann::json& request);
   // Stops the run in progress, if any (any thread).
-  void cancel();
-  void disconnected(int client);
+  void cancel() { live_.cancel(); }
+  void disconnected(int client) { live_.disconnected(client); }
 
-  const AllowedRoots& roots() const { return roots_; }
+  const AllowedRoots& roots() const { return files_.roots(); }
   std::string fileName() const { return file_; }
   // The current net state (the `net` push).
   nlohmann::json netState() const;
 
  private:
-  struct Snapshot {
-    NetDocument doc;
-    std::string merge;  // edits with the same non-empty key in a row make one undo step
-  };
   using Handler = nlohmann::json (DesignerSession::*)(int client, const nlohmann::json& request);
   static const std::map<std::string, Handler>& handlers();
 
@@ -106,40 +84,24 @@ class DesignerSession {
   nlohmann::json opSubnetOpen(int, const nlohmann::json&);
   nlohmann::json opWatch(int, const nlohmann::json&);
 
-  // Makes `next` the edited net: rebuilds the executor when the net's structure changed, else
-  // passes the changed properties to the executor (its cache stays valid). Throws NetError
-  // (nothing changed) when the engine refuses it.
-  void install(NetDocument next);
-  // install() as one undo step, and the new state to every tab. Consecutive edits with the same
-  // non-empty `merge` key (one property dragged along a slider) are one step.
-  // Undo (from = undo_, to = redo_) or redo: the top state of `from` becomes the net.
-  nlohmann::json step(std::vector<Snapshot>& from, std::vector<Snapshot>& to, const std::string& what);
-  // `notify` false: the caller pushes the state later (after an automatic run).
+  // Makes `next` the edited net as one undo step (see EditHistory::edited), and the new state
+  // to every tab; `notify` false: the caller pushes the state later (after an automatic run).
+  // Throws NetError (nothing changed) when the engine refuses it.
   void apply(NetDocument next, const std::string& merge = "", bool notify = true);
-  void rebuild(const NetDocument& doc);
-  // Whether a property change from `previous` to `next` changes a block's configuration (its
-  // sub-net, its ports): then the net is built anew instead of setting the property.
-  bool configurationChanged(const NetDocument& previous, const NetDocument& next) const;
-  void setExecutorProperty(const NetDocument& doc, const std::string& block, const std::string& property,
-                           const std::string* text);
+  nlohmann::json step(EditHistory::Direction direction);
+  // An empty net in `dir`, named `origin` (a file not saved yet, or none).
+  void startEmpty(const std::string& origin, const std::string& dir);
   void loadFile(const std::string& path);  // throws NetError; not an undo step
-  nlohmann::json runReport(const RunReport& report) const;
-  enum class RunKind { OutOfDate, All, FromBlock, BlockOnly };
-  nlohmann::json runAndReport(RunKind kind, const std::string& block);
-  void changed();          // revision++, push the net state
-  void sendPortData();     // every watched port whose value changed, to its tab
-  void sendPortData(int client);
-  std::string baseDir() const;
-  BlockSpec& block(NetDocument& doc, const std::string& name) const;
+  nlohmann::json runAndReport(LiveNet::RunKind kind, const std::string& block = "");
+  void changed();  // revision++, push the net state
+  nlohmann::json portDataHeader() const;
+  std::string baseDir() const { return doc_.spec.base_dir; }
 
   Output& out_;
-  Options options_;
-  AllowedRoots roots_;
+  NetFiles files_;
   NetDocument doc_;
-  std::unique_ptr<Executor> executor_;
-  mutable std::mutex executor_mutex_;  // guards executor_ swaps against cancel() from other threads
-  int observer_ = -1;
-  std::vector<Snapshot> undo_, redo_;
+  LiveNet live_;
+  EditHistory history_;
   std::string file_;  // "" for a net never saved
   std::string saved_text_;
   std::vector<std::string> errors_;
@@ -147,14 +109,7 @@ class DesignerSession {
   // Counts the nets opened (a file, a sub-net's file): what a page shows of one net (previews,
   // run results) must not carry over to another, even one with the same block names.
   long document_ = 0;
-  long run_count_ = 0;
-  std::mutex cached_mutex_;
-  std::vector<std::string> cached_;  // blocks served from cache in the run in progress
   bool auto_run_ = true;
-  // Watched ports per tab and mode, and what each tab was sent last (value identity).
-  std::map<int, std::map<std::string, std::set<std::string>>> watches_;
-  std::map<std::pair<int, std::string>, boost::shared_ptr<const void>> sent_;
-  std::map<std::string, std::pair<boost::shared_ptr<const void>, std::shared_ptr<const std::string>>> encoded_;
 };
 
 }  // namespace designer

@@ -154,5 +154,49 @@ nlohmann::json builtNetState(const Net& net, const Executor* executor) {
           {"errors", nlohmann::json::array()}};
 }
 
+void addDocument(nlohmann::json& state, const NetDocument& doc, const Executor& executor) {
+  using json = nlohmann::json;
+  json blocks = json::array(), links = json::array();
+  const Net& net = executor.net();
+  for (const BlockSpec& b : doc.spec.blocks) {
+    json j = {{"name", b.name}, {"type", b.type}};
+    auto pos = doc.positions.find(b.name);
+    j["position"] = pos == doc.positions.end() ? json() : json{pos->second[0], pos->second[1]};
+    const int n = net.findNode(b.name);
+    json props = json::object(), explicit_props = json::array();
+    for (const auto& p : b.properties) {
+      props[p.name] = p.text;
+      explicit_props.push_back(p.name);
+    }
+    if (n >= 0) {
+      const Block& instance = *net.node(n).block;
+      for (const auto& spec : instance.propertySpecs()) {
+        if (!props.contains(spec.name())) props[spec.name()] = toString(instance.propertyValue(spec.name()));
+      }
+      addPorts(j, instance);
+      j["stats"] = statsJson(executor.stats(b.name));
+      j["has_subnet"] = instance.subNet() != nullptr;
+    } else {
+      j["inputs"] = j["outputs"] = json::array();
+      j["stats"] = statsJson(BlockStats());
+      j["has_subnet"] = false;
+    }
+    j["properties"] = props;
+    j["explicit"] = explicit_props;
+    j["feedback"] = b.feedback ? feedbackJson(*b.feedback) : json();
+    blocks.push_back(j);
+  }
+  for (const LinkSpec& l : doc.spec.links) {
+    std::string type;
+    const int n = net.findNode(l.from_block);
+    if (n >= 0) {
+      if (const PortSpec* p = net.node(n).block->findOutput(l.from_port)) type = p->type->name;
+    }
+    links.push_back({{"from", l.from_block + "." + l.from_port}, {"to", l.to_block + "." + l.to_port}, {"type", type}});
+  }
+  state["blocks"] = blocks;
+  state["links"] = links;
+}
+
 }  // namespace designer
 }  // namespace imagenets

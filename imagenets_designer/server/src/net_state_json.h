@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "imagenets/executor.h"
+#include "net_document.h"
 
 namespace imagenets {
 namespace designer {
@@ -28,6 +29,9 @@ nlohmann::json propertyValueJson(const PropertyValue& value);
 void addPorts(nlohmann::json& block, const Block& instance);
 // A built net shown read-only (a sub-net's inner net), with the stats of `executor` if given.
 nlohmann::json builtNetState(const Net& net, const Executor* executor);
+// The edited net's `blocks` and `links` into `state`: as the document has them, with the ports,
+// defaults and stats of the executor built from it.
+void addDocument(nlohmann::json& state, const NetDocument& doc, const Executor& executor);
 
 }  // namespace designer
 }  // namespace imagenets

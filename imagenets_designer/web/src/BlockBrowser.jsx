@@ -1,4 +1,6 @@
 import React, { useMemo, useState } from 'react';
+import { useCommands } from './commands.js';
+import { useStore } from './store.jsx';
 
 // Blocks whose name or doc contain the text and that have an input / output of the given types.
 export function matchBlocks(blocks, { text = '', input = '', output = '' }) {
@@ -47,7 +49,9 @@ function groupBy(list, keys) {
 
 // The block browser (paper 3.2): grouped by category, name or data type, with search and type
 // filters; drag an entry onto the canvas.
-export function BlockBrowser({ registry, onStartDrag }) {
+export function BlockBrowser() {
+  const { registry } = useStore().state;
+  const { startDrag: onStartDrag } = useCommands();
   const [filter, setFilter] = useState({ text: '', input: '', output: '' });
   const [order, setOrder] = useState('category');
   const [open, setOpen] = useState(null);

@@ -1,0 +1,77 @@
+import React, { createContext, useContext, useEffect, useMemo, useReducer, useRef } from 'react';
+import { Connection } from './connection.js';
+import { split } from './flow.js';
+import { initialState, reducer } from './reducer.js';
+
+const Store = createContext(null);
+
+// The page's one store (reducer.js), the connection to the server and what the page keeps outside
+// the state (the clipboard, the canvas element, the last pointer position).
+export function DesignerProvider({ children }) {
+  const [state, dispatch] = useReducer(reducer, initialState);
+  const conn = useMemo(() => new Connection(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`), []);
+  const refs = { wrapper: useRef(null), clipboard: useRef(null), pointer: useRef({ x: 0, y: 0 }) };
+  const tools = useMemo(() => {
+    const request = (op, args) => conn.request(op, args);
+    const say = (text, error = false) => dispatch({ type: 'say', text, error });
+    const attempt = async (op, args) => {
+      try { return await request(op, args); } catch (err) { say(err.message, true); return null; }
+    };
+    const set = (fields) => dispatch({ type: 'set', fields });
+    return { conn, dispatch, request, say, attempt, set };
+  }, [conn]);
+
+  useEffect(() => {
+    const onData = ({ header, payload }) => {
+      const data = { header, payload, value: header.value };
+      if (header.mode === 'full') { dispatch({ type: 'fullData', data }); return; }
+      const store = (value) => dispatch({ type: 'preview', port: header.port, document: header.document, value });
+      // Thumbnails are decoded off the main thread, then drawn straight onto the node's canvas.
+      if (header.format === 'jpeg' || header.format === 'png') {
+        createImageBitmap(new Blob([payload], { type: `image/${header.format}` }))
+          .then((bitmap) => store({ ...data, bitmap }))
+          .catch((err) => store({ header: { ...header, format: 'none', error: `cannot decode: ${err.message}` } }));
+      } else {
+        store(data);
+      }
+    };
+    const offs = [
+      conn.on('net', (net) => dispatch({ type: 'net', net })),
+      conn.on('event', (event) => dispatch({ type: 'event', event })),
+      conn.on('error', (e) => tools.say(e.error, true)),
+      conn.on('closed', () => { dispatch({ type: 'closed' }); tools.say('connection to the designer closed', true); }),
+      conn.on('data', onData),
+    ];
+    conn.request('hello').then((reply) => dispatch({ type: 'hello', registry: reply.registry, net: reply.net }))
+      .catch((err) => tools.say(err.message, true));
+    return () => offs.forEach((off) => off());
+  }, [conn]);
+
+  // Only ports that still exist are watched (a block may have gone by an edit in any tab).
+  const { watched, net, connected, dataPort } = state;
+  const watchedPorts = useMemo(() => JSON.stringify([...watched].filter((key) => {
+    const [block, port] = split(key);
+    return net?.blocks.some((b) => b.name === block && b.outputs.some((p) => p.name === port));
+  }).sort()), [watched, net]);
+  useEffect(() => { if (connected) tools.attempt('watch', { ports: JSON.parse(watchedPorts), mode: 'preview' }); }, [watchedPorts, connected]);
+  useEffect(() => {
+    if (!connected) return;
+    tools.set({ fullData: null });
+    tools.attempt('watch', { ports: dataPort ? [dataPort.port] : [], mode: 'full' });
+  }, [dataPort, connected]);
+
+  const value = useMemo(() => ({ state, ...tools, refs }), [state, tools]);
+  return <Store.Provider value={value}>{children}</Store.Provider>;
+}
+
+// The state and the means to change it: { state, dispatch, set, request, attempt, say, refs }.
+export function useStore() {
+  return useContext(Store);
+}
+
+// The block of the one selected node, if exactly one is selected.
+export function useSelectedBlock() {
+  const { net, nodes } = useStore().state;
+  const selected = nodes.filter((n) => n.selected);
+  return selected.length === 1 ? net.blocks.find((b) => b.name === selected[0].id) : null;
+}
