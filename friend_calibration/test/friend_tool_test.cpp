@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "imagenets/testing/command_runner.h"
+#include "imagenets_calibration/bag_recorder.h"
 
 namespace {
 
@@ -101,4 +102,39 @@ TEST(Tool, HelpListsThePackagesCommands) {
   for (const char* known : {"calibrate", "repeatability", "accuracy-study", "calibration-plan"}) {
     expectContains(r.output, std::string("  ") + known + " ");
   }
+}
+
+// `calibrate --bag` with a bag that lacks the cameras: the error names the missing topic (and what
+// the bag has), with no master needed, and the output file of a previous calibration stays as it was.
+TEST(Tool, CalibrateFromABagWithoutTheNeededTopicsNamesTheTopicAndKeepsTheOutput) {
+  const std::string dir = temp("calibrate_bag");
+  boost::filesystem::create_directories(dir);
+  const std::string bag = dir + "/joints_only.bag";
+  {
+    imagenets_calibration::BagRecorder recorder(bag);
+    sensor_msgs::JointState js;
+    js.header.stamp = ros::Time(1);
+    js.name = {"arm_joint_1"};
+    js.position = {0.1};
+    recorder.write("/joint_states", js.header.stamp, js);
+    recorder.commit();
+  }
+  const std::string output = dir + "/previous.yaml";
+  std::ofstream(output) << "a previous calibration\n";
+  Result r = tool("calibrate --bag " + bag + " --config $(rospack find friend_description)/config/robot.yaml --output " +
+                  output);
+  EXPECT_EQ(r.status, 1) << r.output;
+  expectContains(r.output, "no topic '/stereo/left/image_raw' (the left camera's images); the bag has /joint_states");
+  expectContains(r.output, output + " is unchanged");
+  std::ifstream in(output);
+  std::stringstream kept;
+  kept << in.rdbuf();
+  EXPECT_EQ(kept.str(), "a previous calibration\n");
+  // --bag needs the robot's description; the offline options go with --bag only.
+  r = tool("calibrate --bag " + bag);
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--bag needs --config FILE");
+  r = tool("calibrate --output " + output);
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "go with --bag");
 }

@@ -1,5 +1,6 @@
 // `imagenets calibrate`: triggers the running friend_calibration node, prints the fixed point and,
-// against the simulator, its error against the true one.
+// against the simulator, its error against the true one. With --bag: calibrates from a rosbag
+// offline, without robot or master (imagenets_calibration/bag_calibration.h), for any robot.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -7,18 +8,79 @@
 
 #include "calibration_client.h"
 #include "imagenets/tool/command.h"
+#include "imagenets_calibration/bag_calibration.h"
+#include "imagenets_calibration/storage.h"
 #include "robot_description/robot_model.h"
 
 namespace imagenets {
 namespace tool {
 namespace {
 
+// --bag: the calibration net on the bag's samples; the result (and the calibrated URDF beside it)
+// written to --output only when it succeeds, so a failed run leaves a previous file as it was.
+int calibrateFromBag(const imagenets_calibration::BagCalibrationOptions& options, const std::string& output) {
+  imagenets_calibration::BagCalibration c;
+  try {
+    c = imagenets_calibration::calibrateFromBag(options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "calibration from the bag failed: %s%s\n", e.what(),
+                 output.empty() ? "" : ("; " + output + " is unchanged").c_str());
+    return 1;
+  }
+  const auto& r = c.result;
+  std::printf("bag: %s\n", c.samples.c_str());
+  std::printf("%s: %s\n", r.success ? "calibrated" : "FAILED", r.message.c_str());
+  for (size_t i = 0; i < r.rejected.size(); ++i) {
+    std::printf("sample %d not used: %s\n", r.rejected[i],
+                i < r.rejection_reasons.size() ? r.rejection_reasons[i].c_str() : "");
+  }
+  if (!r.success) {
+    if (!output.empty()) std::printf("%s is unchanged\n", output.c_str());
+    return 1;
+  }
+  const Eigen::Vector3d t = r.fixed_point.translation();
+  const Eigen::Vector3d rpy = robot_description::rpyOf(r.fixed_point.rotation()) * 180 / M_PI;
+  std::printf("fixed point: xyz [%.6f %.6f %.6f] m, rpy [%.5f %.5f %.5f] deg; %zu samples used, %zu rejected\n", t.x(),
+              t.y(), t.z(), rpy.x(), rpy.y(), rpy.z(), r.used.size(), r.rejected.size());
+  if (r.has_covariance) {
+    std::printf("uncertainty of the pixel-level fit (3 sigma = 3 sqrt(trace)): %.3f mm, %.4f deg\n",
+                3000 * r.sigmaTranslation(), 3 * r.sigmaRotation() * 180 / M_PI);
+  }
+  if (!output.empty()) {
+    const robot_description::RobotModel model(robot_description::loadRobotDescription(options.description));
+    imagenets_calibration::StoredCalibration stored;
+    stored.base_frame = model.description().base_frame;
+    stored.result = r;
+    imagenets_calibration::saveCalibration(stored, output);
+    stored.file = output;
+    const std::string urdf = imagenets_calibration::urdfFileBeside(output);
+    imagenets_calibration::saveCalibratedUrdf(model, stored, urdf);
+    std::printf("calibration file: %s; calibrated URDF: %s\n", output.c_str(), urdf.c_str());
+  }
+  return 0;
+}
+
 int calibrate(const Args& args) {
   int redundancy = 5, poses = 0, max_poses = 0;
   std::string method;
   double timeout = 30, target_mm = 0, target_deg = 0;
+  imagenets_calibration::BagCalibrationOptions bag;
+  std::string output;
   for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--redundancy") {
+    if (args[i] == "--bag") {
+      bag.bag = flagValue(args, i);
+    } else if (args[i] == "--config") {
+      bag.description = flagValue(args, i);
+    } else if (args[i] == "--net") {
+      bag.net = flagValue(args, i);
+    } else if (args[i] == "--output" || args[i] == "-o") {
+      output = flagValue(args, i);
+    } else if (args[i] == "--set") {
+      const std::string s = flagValue(args, i);
+      const size_t eq = s.find('=');
+      if (eq == std::string::npos || eq == 0) throw UsageError("--set '" + s + "' is not property=value");
+      bag.settings.emplace_back(s.substr(0, eq), s.substr(eq + 1));
+    } else if (args[i] == "--redundancy") {
       redundancy = intValue(args, i);
     } else if (args[i] == "--poses") {
       poses = intValue(args, i);
@@ -35,6 +97,14 @@ int calibrate(const Args& args) {
     } else if (args[i].rfind("__", 0) != 0) {  // roslaunch's __name:= etc.
       throw unknownArgument(args[i]);
     }
+  }
+  if (!bag.bag.empty()) {
+    if (bag.description.empty()) throw UsageError("--bag needs --config FILE (the robot's description YAML)");
+    if (!method.empty()) bag.method = method;
+    return calibrateFromBag(bag, output);
+  }
+  if (!bag.description.empty() || !bag.net.empty() || !output.empty() || !bag.settings.empty()) {
+    throw UsageError("--config, --net, --output and --set go with --bag");
   }
   if (poses < 0) throw UsageError("--poses must be >= 0");
   CalibrationClient client("imagenets_calibrate", timeout);
@@ -91,9 +161,11 @@ int calibrate(const Args& args) {
 }  // namespace
 
 IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--poses N] [--method paper|joint] [--target-mm MM] [--target-deg DEG] "
-                       "[--max-poses N] [--wait S]",
+                       "[--max-poses N] [--wait S] | calibrate --bag FILE.bag --config ROBOT.yaml [--net FILE] "
+                       "[--method paper|joint] [--set PROPERTY=VALUE ...] [--output FILE.yaml]",
                        "trigger the running friend_calibration node; print the fixed point (and its error in simulation); "
-                       "--target-mm/--target-deg: more poses until the 3-sigma bound is within",
+                       "--target-mm/--target-deg: more poses until the 3-sigma bound is within; --bag: calibrate offline "
+                       "from a rosbag (no robot, no master), the samples where arm and head stood still",
                        calibrate);
 
 }  // namespace tool

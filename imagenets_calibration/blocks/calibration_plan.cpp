@@ -33,6 +33,8 @@ class CalibrationPlan : public imagenets::Block {
     addProperty<double>("reapproach_deg", 10.0, "paper method: the arm comes to the pose anew from this far (joint 4)")
         .range(0.0, 45.0);
     addProperty<std::string>("replay", "", "a saved calibration file: replay its samples instead (no robot)").path();
+    addProperty<std::string>("bag", "", "a rosbag: its still stereo pairs are the samples (no robot)").path();
+    for (const auto& p : bagSampleProperties()) addPropertySpec(p);
     addProperty<std::string>("description", "", "robot description YAML (required)").path();
   }
 
@@ -41,7 +43,23 @@ class CalibrationPlan : public imagenets::Block {
     plan->method = ctx.property<std::string>("method");
     plan->loops = ctx.property<int>("loops");
     plan->replay_file = ctx.property<std::string>("replay");
-    if (!plan->replay_file.empty()) {
+    plan->bag_file = ctx.property<std::string>("bag");
+    if (!plan->replay_file.empty() && !plan->bag_file.empty()) {
+      throw imagenets::BlockError("properties 'replay' and 'bag': set one of them, not both");
+    }
+    if (!plan->bag_file.empty()) {
+      const RobotModel& model = robotModel(ctx.property<std::string>("description"));
+      try {
+        const auto bag = readBagSamples(plan->bag_file, sampleJoints(model), bagSampleSettings(ctx));
+        plan->samples = static_cast<int>(bag->samples.size());
+      } catch (const std::exception& e) {
+        throw imagenets::BlockError(std::string("property 'bag': ") + e.what());
+      }
+      if (plan->samples == 0) {
+        throw imagenets::BlockError("property 'bag': no samples: " +
+                                    readBagSamples(plan->bag_file, sampleJoints(model), bagSampleSettings(ctx))->report);
+      }
+    } else if (!plan->replay_file.empty()) {
       try {
         plan->samples = static_cast<int>(loadCalibration(plan->replay_file).result.samples.size());
       } catch (const std::exception& e) {

@@ -32,5 +32,39 @@ int sampleIndex(const imagenets::Context& ctx, const imagenets_calibration_msgs:
   return k;
 }
 
+std::vector<imagenets::PropertySpec> bagSampleProperties() {
+  using imagenets::PropertySpec;
+  using imagenets::PropertyTraits;
+  const BagSampleSettings d;
+  std::vector<PropertySpec> p;
+  p.emplace_back("bag_camera", PropertyTraits<std::string>::kind, d.camera,
+                 "bag: camera namespace NS/{left,right}/{image_raw,camera_info}");
+  p.emplace_back("bag_joint_states", PropertyTraits<std::string>::kind, d.joint_states, "bag: JointState topic");
+  p.emplace_back("still_time", PropertyTraits<double>::kind, d.still_time,
+                 "bag: s no joint may move before and after an image taken as a sample");
+  p.back().range(0.0, 60.0);
+  p.emplace_back("still_tolerance", PropertyTraits<double>::kind, d.still_tolerance,
+                 "bag: rad (m) a joint may change and still count as not moving");
+  p.back().range(0.0, 1.0);
+  p.emplace_back("max_stereo_offset", PropertyTraits<double>::kind, d.max_stereo_offset,
+                 "bag: s between the left and right image stamps of a pair");
+  p.back().range(0.0, 1.0);
+  p.emplace_back("max_joint_state_age", PropertyTraits<double>::kind, d.max_joint_state_age,
+                 "bag: s from an image to each joint's nearest reading");
+  p.back().range(0.0, 10.0);
+  return p;
+}
+
+BagSampleSettings bagSampleSettings(const imagenets::Context& ctx) {
+  BagSampleSettings s;
+  s.camera = ctx.property<std::string>("bag_camera");
+  s.joint_states = ctx.property<std::string>("bag_joint_states");
+  s.still_time = ctx.property<double>("still_time");
+  s.still_tolerance = ctx.property<double>("still_tolerance");
+  s.max_stereo_offset = ctx.property<double>("max_stereo_offset");
+  s.max_joint_state_age = ctx.property<double>("max_joint_state_age");
+  return s;
+}
+
 }  // namespace blocks
 }  // namespace imagenets_calibration

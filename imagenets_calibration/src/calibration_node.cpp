@@ -17,6 +17,7 @@
 #include <imagenets_calibration_msgs/CalibrationSample.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "imagenets_calibration/bag_samples.h"
 #include "imagenets_calibration/calibration_msgs.h"
 #include "imagenets/vision/frames.h"
 #include "imagenets/inner_net.h"
@@ -164,8 +165,19 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     ROS_ERROR("%s: the calibration net is not usable: %s", ros::this_node::getName().c_str(), net_error_.c_str());
   }
 
-  joint_sub_ = nh_.subscribe(pnh_.param<std::string>("joint_states", "joint_states"), 20,
-                             &CalibrationNode::onJointStates, this);
+  const std::string joint_states = pnh_.param<std::string>("joint_states", "joint_states");
+  joint_sub_ = nh_.subscribe(joint_states, 20, &CalibrationNode::onJointStates, this);
+  record_bag_ = pnh_.param<std::string>("record_bag", "");
+  if (!record_bag_.empty()) {
+    record_bag_ = boost::filesystem::absolute(record_bag_).string();
+    BagSampleSettings topics;
+    topics.camera = nh_.resolveName(pnh_.param<std::string>("record_camera", "stereo"));
+    record_camera_topic_ = topics.camera;
+    record_joint_states_topic_ = nh_.resolveName(joint_states);
+    tf_sub_ = nh_.subscribe<tf2_msgs::TFMessage>("/tf", 100, [this](const tf2_msgs::TFMessageConstPtr& m) { onTf(m, false); });
+    tf_static_sub_ = nh_.subscribe<tf2_msgs::TFMessage>("/tf_static", 100,
+                                                        [this](const tf2_msgs::TFMessageConstPtr& m) { onTf(m, true); });
+  }
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   for (int i = 0; i < 2; ++i) {
     const std::string side = i == 0 ? "detections/left/" : "detections/right/";
@@ -289,6 +301,39 @@ void CalibrationNode::onJointStates(const sensor_msgs::JointStateConstPtr& msg) 
   tf_.sendTransform(t);
 }
 
+void CalibrationNode::onTf(const tf2_msgs::TFMessageConstPtr& msg, bool is_static) {
+  std::lock_guard<std::mutex> lock(recorder_mutex_);
+  if (is_static) {
+    for (const auto& t : msg->transforms) tf_static_[t.child_frame_id] = t;
+  }
+  if (recorder_) recorder_->write(is_static ? "/tf_static" : "/tf", ros::Time::now(), *msg);
+}
+
+void CalibrationNode::record(const StereoPair& pair, const Sample& sample) {
+  std::shared_ptr<BagRecorder> recorder;
+  {
+    std::lock_guard<std::mutex> lock(recorder_mutex_);
+    recorder = recorder_;
+  }
+  if (!recorder) return;
+  // The bag's topics as the camera and joint_states publish them; the joint readings are the ones
+  // the sample used, stamped with its image, so the bag's sample is exactly this one.
+  BagSampleSettings topics;
+  topics.camera = record_camera_topic_;
+  topics.joint_states = record_joint_states_topic_;
+  const ros::Time t = pair.left->header.stamp.isZero() ? ros::Time::now() : pair.left->header.stamp;
+  recorder->write(topics.imageTopic("left"), t, *pair.left);
+  recorder->write(topics.imageTopic("right"), t, *pair.right);
+  recorder->write(topics.infoTopic("left"), t, *pair.left_info);
+  recorder->write(topics.infoTopic("right"), t, *pair.right_info);
+  sensor_msgs::JointState joints;
+  joints.header.stamp = pair.left->header.stamp;
+  joints.name = sampleJoints(model_);
+  joints.position = sample.arm_q;
+  joints.position.insert(joints.position.end(), sample.head_q.begin(), sample.head_q.end());
+  recorder->write(topics.jointStatesTopic(), t, joints);
+}
+
 bool CalibrationNode::onService(imagenets_calibration_msgs::Calibrate::Request& req, imagenets_calibration_msgs::Calibrate::Response& res) {
   res = run(req, {});
   return true;
@@ -398,6 +443,24 @@ imagenets_calibration_msgs::Calibrate::Response CalibrationNode::run(const image
     const int total = target ? max_poses : requested;
     StereoPair last_pair;
     DetectionTime detection_time;
+    // What a live calibration saw, into a bag put in place only when the calibration succeeds.
+    std::shared_ptr<BagRecorder> recorder;
+    if (!record_bag_.empty() && req.replay.empty()) {
+      recorder = std::make_shared<BagRecorder>(record_bag_);
+      std::lock_guard<std::mutex> lock(recorder_mutex_);
+      tf2_msgs::TFMessage statics;
+      for (const auto& t : tf_static_) statics.transforms.push_back(t.second);
+      if (!statics.transforms.empty()) recorder->write("/tf_static", ros::Time::now(), statics);
+      recorder_ = recorder;
+    }
+    struct StopRecording {
+      std::mutex& m;
+      std::shared_ptr<BagRecorder>& r;
+      ~StopRecording() {
+        std::lock_guard<std::mutex> lock(m);
+        r.reset();
+      }
+    } stop_recording{recorder_mutex_, recorder_};
     const Result r = runNet(exec, progress, total, requested, &last_pair, &detection_time);
     fill(res, r, base, child_frame_);
     res.target_met = r.withinUncertaintyTarget(req.target_uncertainty, req.target_uncertainty_rotation);
@@ -440,6 +503,19 @@ imagenets_calibration_msgs::Calibrate::Response CalibrationNode::run(const image
     } catch (const std::exception& e) {
       urdf_note = std::string("; calibrated URDF NOT written: ") + e.what() + " (the calibration itself is saved)";
     }
+    std::string bag_note;
+    if (recorder) {
+      {
+        std::lock_guard<std::mutex> lock(recorder_mutex_);
+        recorder_.reset();
+      }
+      try {
+        recorder->commit();
+        bag_note = "; recorded to " + recorder->file();
+      } catch (const std::exception& e) {
+        bag_note = std::string("; bag NOT recorded: ") + e.what();
+      }
+    }
     const std::string pictures = r.samples.empty() ? "" : savePictures(last_pair, r.samples.back());
     publish(r, child_frame_);
     publishSampleMarkers(r);
@@ -447,7 +523,7 @@ imagenets_calibration_msgs::Calibrate::Response CalibrationNode::run(const image
     char b[256];
     std::snprintf(b, sizeof b, "; fixed point [%.4f %.4f %.4f] m; saved to %s", t.x(), t.y(), t.z(),
                   calibration_file_.c_str());
-    res.message = r.message + target_note + b + (archived.empty() ? "" : " (previous kept as " + archived + ")") + urdf_note +
+    res.message = r.message + target_note + b + (archived.empty() ? "" : " (previous kept as " + archived + ")") + urdf_note + bag_note +
                   (pictures.empty() ? "" : "; pictures: " + pictures);
     ROS_INFO("%s", res.message.c_str());
   } catch (const std::exception& e) {
@@ -520,6 +596,7 @@ Result CalibrationNode::runNet(imagenets::Executor& exec, const Progress& progre
         if (!pair.left || !pair.right || !pair.left_info || !pair.right_info || !sample) return;
         const Sample s = fromMsg(*sample);
         publishDetections(pair, s);
+        record(pair, s);
         *last_pair = pair;
         ROS_INFO("sample %d/%d: left %s (conf %.2f, %.0f ms, CPU %.0f ms), right %s (conf %.2f, %.0f ms, CPU %.0f ms)",
                  done, samples, s.left.found ? "found" : "not found", s.left.confidence, sample_left.last_ms,

@@ -26,13 +26,17 @@
 //   min_valid_fraction, urdf_file (the calibrated URDF written after each saved calibration;
 //   default beside calibration_file, .urdf), max_uncertainty (m, 3-sigma translation bound above which a calibration
 //   does not replace a good saved one; 0.002, 0 = off), replay (file re-solved at start-up),
-//   joint_states. The acquisition's
+//   joint_states, record_bag (a rosbag to record each live calibration's samples in: per sample the
+//   stereo pair, both camera_info and the joint readings it used, and tf / tf_static while it runs;
+//   written whole on success, a failed run leaves the previous bag as it was: bag_recorder.h),
+//   record_camera (the camera namespace the bag names, "stereo"). The acquisition's
 //   settings (speed, timeouts, settling, camera namespace) are properties of the sample net's
 //   blocks: use ~net for a net with other values.
 #pragma once
 
 #include <atomic>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -44,8 +48,10 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include "imagenets_calibration/bag_recorder.h"
 #include "imagenets_calibration/calibration.h"
 #include "imagenets/vision/marker.h"
 #include "imagenets_calibration/storage.h"
@@ -75,6 +81,9 @@ class CalibrationNode {
   bool onService(imagenets_calibration_msgs::Calibrate::Request& req, imagenets_calibration_msgs::Calibrate::Response& res);
   void onAction(const imagenets_calibration_msgs::CalibrateGoalConstPtr& goal);
   void onJointStates(const sensor_msgs::JointStateConstPtr& msg);
+  void onTf(const tf2_msgs::TFMessageConstPtr& msg, bool is_static);
+  // One sample into the bag being recorded (none: nothing).
+  void record(const StereoPair& pair, const Sample& sample);
 
   // Loads ~net (and its replay twin); throws naming the file, block or port that is wrong.
   void loadNets(const std::string& net, const std::string& replay_net);
@@ -122,6 +131,14 @@ class CalibrationNode {
   tf2_ros::StaticTransformBroadcaster static_tf_;
   tf2_ros::TransformBroadcaster tf_;
   ros::Publisher markers_pub_, detection_image_pub_[2], detection_info_pub_[2];
+
+  // ~record_bag: the recording of the running calibration (null when none), the topics it names
+  // and the static transforms so far (written at each recording's start: they are latched).
+  std::string record_bag_, record_camera_topic_, record_joint_states_topic_;
+  std::mutex recorder_mutex_;  // guards recorder_ and tf_static_
+  std::shared_ptr<BagRecorder> recorder_;
+  std::map<std::string, geometry_msgs::TransformStamped> tf_static_;
+  ros::Subscriber tf_sub_, tf_static_sub_;
 
   std::mutex data_mutex_;  // guards last_chain_tf_
   ros::Time last_chain_tf_;
