@@ -104,9 +104,10 @@ TargetDetection detectAprilTags(const cv::Mat& gray, const render::CameraModel& 
                                 const TargetDetectorOptions& options) {
   const Family* f = findFamily(t.family);
   if (!f) throw std::invalid_argument(t.file + ": AprilTag family '" + t.family + "' is unknown");
-  apriltag_family_t* tf = sharedFamily(*f);
-  // A detector per call: libapriltag's detector keeps per-detection state (not thread-safe), and
-  // making one is cheap next to detecting.
+  // A detector and a family per call: libapriltag's detector keeps per-detection state, and
+  // adding a family to a detector builds its decode table inside the family, which destroying the
+  // detector frees: a family shared by detectors in parallel (both cameras) is freed twice.
+  apriltag_family_t* tf = f->create();
   apriltag_detector_t* td = apriltag_detector_create();
   apriltag_detector_add_family(td, tf);
   td->quad_decimate = static_cast<float>(options.quad_decimate);
@@ -161,6 +162,7 @@ TargetDetection detectAprilTags(const cv::Mat& gray, const render::CameraModel& 
   }
   apriltag_detections_destroy(dets);
   apriltag_detector_destroy(td);
+  f->destroy(tf);
 
   out.confidence = out.tags ? std::min(1.0, std::max(0.0, margin_sum / out.tags / 100.0)) : 0.0;
   if (out.tags == 0) {
