@@ -1,13 +1,8 @@
 #include "move_joint_group.h"
 
-#include <map>
-#include <mutex>
-
-#include <actionlib/client/simple_action_client.h>
-
 #include "friend_msgs/MoveJointsAction.h"
+#include "imagenets/blocks/action_clients.h"
 #include "imagenets/blocks/ros_access.h"
-#include "imagenets/calling_thread_queue.h"
 
 namespace imagenets {
 namespace blocks {
@@ -15,51 +10,17 @@ namespace {
 
 using hardware::ensureRosNode;
 
-// One client per action server, kept between motions (connecting one takes a few hundred ms, more
-// than many motions), each on its own calling-thread queue and used by one motion at a time. Its
-// queue collects the server's status messages while idle: a client idle for a minute is
-// replaced, which bounds that backlog.
-struct MoveConnection {
-  CallingThreadQueue queue;
-  actionlib::SimpleActionClient<friend_msgs::MoveJointsAction> client;
-  explicit MoveConnection(const std::string& action) : client(queue.nodeHandle(), action, false) {}
-};
-struct MoveClient {
-  std::mutex busy;
-  std::unique_ptr<MoveConnection> connection;
-  ros::WallTime last_used;
-};
-
-MoveClient& moveClient(const std::string& action) {
-  static std::mutex mutex;
-  // Never destroyed: actionlib clients must not be torn down after ROS has shut down at exit.
-  static auto* clients = new std::map<std::string, std::unique_ptr<MoveClient>>();
-  std::lock_guard<std::mutex> lock(mutex);
-  auto& c = (*clients)[ros::names::resolve(action)];
-  if (!c) c = std::make_unique<MoveClient>();
-  return *c;
-}
-
 // Sends a friend_msgs/MoveJoints goal and waits for the result; returns the reached positions.
 // Throws BlockError naming the action when the server is missing, rejects, aborts or times out.
-sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_msgs::JointState& target,
+sensor_msgs::JointStatePtr moveJoints(const std::string& action_name, const sensor_msgs::JointState& target,
                                       double speed_scale, double server_timeout, double motion_timeout) {
   ensureRosNode();
-  MoveClient& move = moveClient(action);
-  std::lock_guard<std::mutex> lock(move.busy);
-  if (!move.connection || (ros::WallTime::now() - move.last_used).toSec() > 60.0) {
-    move.connection.reset();
-    move.connection = std::make_unique<MoveConnection>(action);
-  }
-  struct Used {
-    MoveClient& m;
-    ~Used() { m.last_used = ros::WallTime::now(); }
-  } used{move};
-  auto& client = move.connection->client;
-  CallingThreadQueue& queue = move.connection->queue;
-  if (!queue.waitUntil([&client] { return client.isServerConnected(); }, server_timeout)) {
-    throw BlockError("action server '" + ros::names::resolve(action) + "' not available after " +
-                     std::to_string(server_timeout) + " s (property server_timeout)");
+  hardware::ActionClientLease<friend_msgs::MoveJointsAction> lease(action_name);
+  const std::string& action = lease.action();
+  auto& client = lease.client();
+  if (!lease.waitUntil([&client] { return client.isServerConnected(); }, server_timeout)) {
+    throw BlockError("action server '" + action + "' not available after " + std::to_string(server_timeout) +
+                     " s (property server_timeout)");
   }
   friend_msgs::MoveJointsGoal goal;
   goal.joint_names = target.name;
@@ -67,7 +28,7 @@ sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_ms
   goal.speed_scale = speed_scale;
   client.sendGoal(goal);
   bool lost = false;  // the server went away mid-motion (the robot's driver stopped): fail at once
-  const bool finished = queue.waitUntil(
+  const bool finished = lease.waitUntil(
       [&] {
         lost = !client.getState().isDone() && !client.isServerConnected();
         return lost || client.getState().isDone();
@@ -75,18 +36,17 @@ sensor_msgs::JointStatePtr moveJoints(const std::string& action, const sensor_ms
       motion_timeout);
   if (lost) {
     client.cancelGoal();
-    move.connection.reset();
-    throw BlockError("action server '" + ros::names::resolve(action) +
-                     "' lost during the motion (the robot's driver / friend_sim stopped?)");
+    lease.reset();
+    throw BlockError("action server '" + action + "' lost during the motion (the robot's driver / friend_sim stopped?)");
   }
   if (!finished) {
     client.cancelGoal();
-    throw BlockError("'" + ros::names::resolve(action) + "' did not finish within " + std::to_string(motion_timeout) +
+    throw BlockError("'" + action + "' did not finish within " + std::to_string(motion_timeout) +
                      " s (property motion_timeout); goal canceled");
   }
   const auto state = client.getState();
   if (state != actionlib::SimpleClientGoalState::SUCCEEDED) {
-    throw BlockError("'" + ros::names::resolve(action) + "' " + state.toString() + ": " + state.getText());
+    throw BlockError("'" + action + "' " + state.toString() + ": " + state.getText());
   }
   auto reached = boost::make_shared<sensor_msgs::JointState>();
   reached->header.stamp = ros::Time::now();

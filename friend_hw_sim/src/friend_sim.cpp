@@ -31,11 +31,23 @@ FriendSim::FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh)
   if (!(time_scale_ > 0)) throw std::runtime_error("parameter ~time_scale must be positive");
   const auto& d = nominal_.description();
   head_link0_ = robot_description::urdfChainMountJoint(d, d.head).child;  // as the URDF TF comes from names it
-  arm_ = std::make_unique<JointGroupServer>(nh_, "arm/move_joints", d.arm, d.arm_home, pnh_.resolveName("faults/arm_abort_probability"),
-                                            static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + 11);
-  head_ = std::make_unique<JointGroupServer>(nh_, "head/move_joints", d.head, d.head_home,
-                                             pnh_.resolveName("faults/head_abort_probability"),
-                                             static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + 23);
+  // ~move_joints false: only the standard interfaces (a robot without FRIEND's MoveJoints).
+  const bool serve_move_joints = pnh_.param("move_joints", true);
+  const auto group = [&](const std::string& name, unsigned seed_offset) {
+    JointGroupConfig c;
+    if (serve_move_joints) c.move_action = name + "/move_joints";
+    c.trajectory_action = name + "_controller/follow_joint_trajectory";
+    c.controller = name + "_controller";
+    c.abort_probability_param = pnh_.resolveName("faults/" + name + "_abort_probability");
+    c.settle_joint_param = pnh_.resolveName("faults/settle_joint");
+    c.settle_error_param = pnh_.resolveName("faults/settle_error");
+    c.seed = static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + seed_offset;
+    return c;
+  };
+  arm_ = std::make_unique<JointGroupServer>(nh_, group("arm", 11), d.arm, d.arm_home);
+  head_ = std::make_unique<JointGroupServer>(nh_, group("head", 23), d.head, d.head_home);
+  arm_->setTimeScale(time_scale_);
+  head_->setTimeScale(time_scale_);
   joint_states_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
   truth_joint_states_ = pnh_.advertise<sensor_msgs::JointState>("ground_truth/joint_states", 10);
   wrench_ = nh_.advertise<geometry_msgs::WrenchStamped>("ft_sensor/wrench", 10);
@@ -112,6 +124,8 @@ void FriendSim::tick(const ros::TimerEvent&) {
     if (scale > 0) {
       ROS_INFO("friend_sim: time_scale %.2f -> %.2f", time_scale_, scale);
       time_scale_ = scale;
+      arm_->setTimeScale(scale);
+      head_->setTimeScale(scale);
     } else {
       ROS_WARN_THROTTLE(10, "friend_sim: ignoring ~time_scale %.3f (must be positive); keeping %.2f", scale, time_scale_);
     }

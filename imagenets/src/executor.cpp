@@ -94,6 +94,31 @@ RunReport Executor::runBlock(const std::string& block) {
   return finishRun(std::move(report));
 }
 
+RunReport Executor::runBlockOnly(const std::string& block) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const int n = net_->findNode(block);
+  if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
+  cancel_ = false;
+  running_ = true;
+  RunReport report;
+  unfinished_.assign(unfinished_.size(), 0);
+  execute({n}, outputs_, report, nullptr);
+  // What ran is up to date unless cancelled or it read inputs that an out-of-date block above it
+  // will change on the next run; what reads its new outputs is not.
+  std::vector<int> ran{n};
+  if (net_->node(n).feedback) ran = feedback_region_[n];
+  std::vector<bool> stale_above(out_of_date_.size(), false);
+  for (int k = 0; k < static_cast<int>(out_of_date_.size()); ++k) {
+    if (!out_of_date_[k] || std::find(ran.begin(), ran.end(), k) != ran.end()) continue;
+    for (int d : net_->descendants(k)) stale_above[d] = true;
+  }
+  for (int d : net_->descendants(n)) out_of_date_[d] = true;
+  for (int m : ran) out_of_date_[m] = unfinished_[m] != 0 || stale_above[m];
+  report.cancelled = std::find(unfinished_.begin(), unfinished_.end(), 1) != unfinished_.end();
+  lock.unlock();
+  return finishRun(std::move(report));
+}
+
 RunReport Executor::runAll() {
   std::unique_lock<std::mutex> lock(mutex_);
   out_of_date_.assign(out_of_date_.size(), true);

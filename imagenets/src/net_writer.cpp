@@ -100,8 +100,10 @@ std::string writeNetText(const NetSpec& spec, const std::string& previous_text) 
     if (!previous_text.empty()) previous = YAML::Load(previous_text);
   } catch (const YAML::Exception&) {
   }
+  // A block missing from the previous text (added since) is an invalid node here, whose IsMap()
+  // would throw: test that it exists first.
   auto docOf = [](const YAML::Node& map) -> std::string {
-    if (!map.IsMap()) return "";
+    if (!map.IsDefined() || !map.IsMap()) return "";
     const YAML::Node doc = map["doc"];
     return doc && doc.IsScalar() ? doc.Scalar() : "";
   };

@@ -100,6 +100,37 @@ TEST_F(ExecutorTest, RunBlockRunsItAndItsDownstream) {
   EXPECT_EQ(e->stats("a").runs, 1u);
 }
 
+TEST_F(ExecutorTest, RunBlockOnlyRunsThatBlockAloneOnItsCurrentInputs) {
+  auto e = load(kChain);
+  e->run();
+  e->setProperty("a", "value", 5.0);  // a is out of date now, but b runs on a's cached 2
+  RunReport r = e->runBlockOnly("b");
+  EXPECT_EQ(r.ran, (std::vector<std::string>{"b"}));
+  EXPECT_EQ(calls("a"), 1);
+  EXPECT_EQ(calls("b"), 2);
+  EXPECT_EQ(calls("c"), 1);
+  EXPECT_DOUBLE_EQ(value(*e, "b.out"), 6.0);
+  EXPECT_DOUBLE_EQ(value(*e, "c.out"), 7.0);  // still from the first run
+  // The next run refreshes what was out of date: a (its property) and everything below it.
+  EXPECT_EQ(e->run().ran, (std::vector<std::string>{"a", "b", "c"}));
+  EXPECT_DOUBLE_EQ(value(*e, "c.out"), 16.0);
+  // After a single run of b, only its downstream c is out of date.
+  e->runBlockOnly("b");
+  EXPECT_EQ(e->run().ran, (std::vector<std::string>{"c"}));
+  EXPECT_EQ(calls("b"), 4);
+  EXPECT_THROW(e->runBlockOnly("zz"), NetError);
+}
+
+TEST_F(ExecutorTest, RunBlockOnlyWithoutInputValuesSaysWhichInputIsMissing) {
+  auto e = load(kChain);
+  RunReport r = e->runBlockOnly("c");
+  EXPECT_TRUE(r.ran.empty());
+  ASSERT_EQ(r.not_run.size(), 1u);
+  EXPECT_NE(r.not_run[0].find("c: input 'in' has no value (block 'b' produced none)"), std::string::npos)
+      << r.not_run[0];
+  EXPECT_EQ(calls("c"), 0);
+}
+
 TEST_F(ExecutorTest, FailingBlockIsReportedAndItsDownstreamNotRun) {
   auto e = load(kChain);
   e->setProperty("b", "fail", true);

@@ -73,6 +73,18 @@ TEST_F(FeedbackTest, FindsTheKnownOptimumAndContinuesWithIt) {
   EXPECT_EQ(trace->score, "score.score");
 }
 
+TEST_F(FeedbackTest, RunningTheTunedBlockOnlyRunsItsSweepButNotWhatFollows) {
+  auto e = load(sweepNet("{property: value, from: -5, to: 5, step: 0.5, score: score.score, goal: maximize}"));
+  e->run();
+  RunReport r = e->runBlockOnly("x");
+  ASSERT_TRUE(r.ok()) << r.failed[0];
+  EXPECT_EQ(imagenets::test::calls("x"), 42);  // a second sweep of 21 candidates
+  EXPECT_EQ(imagenets::test::calls("after"), 1);
+  // `after` is out of date: the next run runs it and nothing of the sweep.
+  EXPECT_EQ(e->run().ran, (std::vector<std::string>{"after"}));
+  EXPECT_EQ(imagenets::test::calls("x"), 42);
+}
+
 TEST_F(FeedbackTest, MinimizeFindsTheMinimum) {
   auto e = load(sweepNet("{property: value, values: [3, -1, 7, 2], score: score.score, goal: minimize}", 2.0));
   e->run();

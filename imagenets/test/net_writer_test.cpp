@@ -76,6 +76,22 @@ TEST(NetWriter, KeepsTheNetsAndTheBlocksDocs) {
   EXPECT_NE(text.find("doc: the gain is tuned"), std::string::npos) << text;
 }
 
+TEST(NetWriter, ABlockAddedSinceThePreviousTextIsWritten) {
+  // An editor adds a block the previous text does not have (here after removing all it had).
+  NetSpec spec = parseNetText(kNet, "t.yaml", "");
+  spec.links.clear();
+  spec.blocks.clear();
+  BlockSpec added;
+  added.name = "image_file_source";
+  added.type = "test/Constant";
+  spec.blocks.push_back(added);
+  std::string text;
+  ASSERT_NO_THROW(text = writeNetText(spec, kNet));
+  EXPECT_NE(text.find("image_file_source:\n    type: test/Constant"), std::string::npos) << text;
+  EXPECT_NE(text.find("Two numbers, scaled and added."), std::string::npos) << text;
+  EXPECT_EQ(parseNetText(text, "t.yaml", "").blocks.size(), 1u);
+}
+
 TEST(NetWriter, FeedbackCandidatesThatAreNotEvenlySpacedAreWrittenAsValues) {
   const std::string net = "blocks:\n  a: {type: test/Constant, feedback: {property: value, values: [1, 2, 5], score: a.value}}\n";
   const std::string text = rewrite(net);

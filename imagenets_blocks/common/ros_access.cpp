@@ -2,6 +2,10 @@
 
 #include <map>
 #include <mutex>
+#include <set>
+
+#include <boost/make_shared.hpp>
+#include <ros/callback_queue.h>
 
 #include <tf2/exceptions.h>
 #include <tf2_ros/buffer.h>
@@ -23,6 +27,56 @@ void ensureRosNode() {
     throw BlockError("no ROS master at " + ros::master::getURI() + " (start the robot, its simulator or a bag)");
   }
   if (!ros::isStarted()) ros::start();
+}
+
+sensor_msgs::JointStatePtr jointPositions(const std::string& topic, const std::vector<std::string>& names,
+                                          double timeout, const ros::Time& after) {
+  ensureRosNode();
+  std::map<std::string, size_t> wanted;
+  for (size_t i = 0; i < names.size(); ++i) wanted.emplace(names[i], i);
+  auto out = boost::make_shared<sensor_msgs::JointState>();
+  out->name = names;
+  out->position.assign(names.size(), 0.0);
+  out->velocity.assign(names.size(), 0.0);
+  std::vector<bool> seen(names.size(), false);
+  bool velocities = true;
+  size_t missing = names.size();
+  std::set<std::string> carried;
+  ros::CallbackQueue queue;  // spun here: works whether or not the host process spins
+  ros::NodeHandle nh;
+  nh.setCallbackQueue(&queue);
+  ros::Subscriber sub = nh.subscribe<sensor_msgs::JointState>(
+      topic, 20, [&](const sensor_msgs::JointStateConstPtr& m) {
+        if (missing == 0 || (!after.isZero() && m->header.stamp < after)) return;
+        const bool has_velocity = m->velocity.size() == m->name.size();
+        for (size_t i = 0; i < m->name.size() && i < m->position.size(); ++i) {
+          carried.insert(m->name[i]);
+          const auto it = wanted.find(m->name[i]);
+          if (it == wanted.end()) continue;
+          out->position[it->second] = m->position[i];
+          if (has_velocity) out->velocity[it->second] = m->velocity[i];
+          velocities = velocities && has_velocity;
+          if (!seen[it->second]) {
+            seen[it->second] = true;
+            --missing;
+          }
+          if (m->header.stamp > out->header.stamp) out->header.stamp = m->header.stamp;
+        }
+      });
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (missing > 0 && ros::WallTime::now() < end && ros::ok()) queue.callAvailable(ros::WallDuration(0.01));
+  if (missing > 0) {
+    std::string absent, has;
+    for (size_t i = 0; i < names.size(); ++i) {
+      if (!seen[i]) absent += (absent.empty() ? "'" : ", '") + names[i] + "'";
+    }
+    for (const auto& n : carried) has += (has.empty() ? "" : ", ") + n;
+    throw BlockError("no position of joint " + absent + " on '" + sub.getTopic() + "' within " +
+                     std::to_string(timeout) + " s (" + std::to_string(sub.getNumPublishers()) + " publishers; " +
+                     (carried.empty() ? std::string("no message") : "its messages name " + has) + ")");
+  }
+  if (!velocities) out->velocity.clear();
+  return out;
 }
 
 tf2_ros::Buffer& tfBuffer() {

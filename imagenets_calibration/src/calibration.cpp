@@ -76,7 +76,7 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
     return poses;
   }
   // Varied poses, chosen so that every estimated parameter is excited (observability.h; measured
-  // with `imagenets calibration-plan`, figures in docs/calibration.md):
+  // with `imagenets calibration-plan`, figures in docs/calibration-method.md):
   // - the arm turns the marker about different axes: every two poses turn other joints both ways
   //   (the wrist and the elbow most), so the first three poses already hold two relative motions
   //   about different axes and any five move every identifiable joint;

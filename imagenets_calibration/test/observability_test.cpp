@@ -12,7 +12,7 @@ namespace imagenets_calibration {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-// Point noise of the simulator's detections at the calibration distance (docs/calibration.md).
+// Point noise of the simulator's detections at the calibration distance (docs/calibration-method.md).
 constexpr double kNoisePx = 0.05;
 
 bool names(const Observability& o, const std::string& name) {

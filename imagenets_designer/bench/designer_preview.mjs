@@ -4,8 +4,8 @@
 // Usage: node bench/designer_preview.mjs   (IMAGENETS_BIN: the built `imagenets`)
 import fs from 'node:fs';
 import path from 'node:path';
-import { launchBrowser, openDesigner, run, startDesigner, tempDir, until, LONG } from '../designer/web/test/harness.mjs';
-import { select, setProperty, stats, watch } from '../designer/web/test/actions.mjs';
+import { launchBrowser, openDesigner, run, startDesigner, tempDir, until, LONG } from '../web/test/harness.mjs';
+import { select, setProperty, stats, watch } from '../web/test/actions.mjs';
 
 const changes = 50;
 const dir = tempDir('bench');

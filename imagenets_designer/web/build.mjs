@@ -16,3 +16,4 @@ await esbuild.build({
   logLevel: 'warning',
 });
 copyFileSync(`${here}index.html`, `${here}dist/index.html`);
+copyFileSync(`${here}favicon.svg`, `${here}dist/favicon.svg`);

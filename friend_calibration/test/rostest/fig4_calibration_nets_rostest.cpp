@@ -2,7 +2,7 @@
 // ways against the simulated FRIEND robot:
 //   - roslaunch: launch/nets/fig4_3_redundant_calibration.launch runs it (paper method, 3 loops)
 //     in an imagenets/Executor nodelet: its fixed point against the simulator's truth (the paper's
-//     method keeps the ~4.4 mm / 0.4 deg bias of the nominal marker offset, docs/calibration.md),
+//     method keeps the ~4.4 mm / 0.4 deg bias of the nominal marker offset, docs/calibration-method.md),
 //     and against the library's calibrate() on the net's own samples (to 1e-9);
 //   - the calibration node (service): a live run at the same pose agrees within the image noise;
 //     so does a live run of the joint method against the same launch with method:=joint;
@@ -211,7 +211,7 @@ TEST_F(Fig4CalibrationNets, TheJointMethodsLaunchAgreesWithTheCalibrationNodesLi
   ASSERT_TRUE(launched && result);
   EXPECT_EQ(result->method, "joint");
   const Eigen::Isometry3d node = expectTheNodeAgreesLive(toEigen(launched->transform), "joint");
-  // Both are near the truth too (docs/calibration.md: 0.3 mm / 0.05 deg against the effective one).
+  // Both are near the truth too (docs/calibration-studies.md: 0.3 mm / 0.05 deg against the effective one).
   ASSERT_TRUE(truth_);
   EXPECT_LT(mmBetween(node, toEigen(truth_->transform)), 1.5);
 }

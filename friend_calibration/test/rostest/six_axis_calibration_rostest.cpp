@@ -23,7 +23,7 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 // The calibration's accuracy targets for one calibration (joint method, redundancy 5;
-// docs/calibration.md).
+// docs/calibration-studies.md).
 constexpr double kTargetMm = 0.5, kTargetDeg = 0.05;
 
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) { return imagenets::frames::toIsometry(t, "transform"); }

@@ -3,7 +3,12 @@
 // frames) on ~ground_truth/... for tests and studies only.
 //
 // Topics/services/actions (relative to the node's namespace, like real drivers):
-//   arm/move_joints, head/move_joints     friend_msgs/MoveJoints actions
+//   arm/move_joints, head/move_joints     friend_msgs/MoveJoints actions (not with ~move_joints false)
+//   arm_controller/follow_joint_trajectory, head_controller/follow_joint_trajectory
+//                                         control_msgs/FollowJointTrajectory actions on the same
+//                                         joints (as ros_control's joint_trajectory_controller;
+//                                         constraints from arm_controller/constraints/..., see
+//                                         joint_group_server.h)
 //   joint_states                          sensor_msgs/JointState (arm + head, encoder readings)
 //   ft_sensor/wrench                      geometry_msgs/WrenchStamped
 //   world_model/set, world_model/get      friend_msgs/WorldModelSet, WorldModelGet
@@ -11,9 +16,10 @@
 //                                         geometry_msgs/TransformStamped (base -> frame, true robot)
 //   ~ground_truth/joint_states            exact joint angles (no encoder noise)
 //   ~set_true_robot                       friend_msgs/SetTrueRobot: another true robot, live (studies)
-// Parameters (private): description, true_error, seed, magnitude (factor on the random error's
+// Parameters (private): description, true_error, move_joints (default true), seed, magnitude (factor on the random error's
 //   magnitudes; ~seed and ~magnitude are rewritten by ~set_true_robot), time_scale (live), joint_state_rate,
 //   encoder_noise (rad), faults/arm_abort_probability, faults/head_abort_probability,
+//   faults/settle_joint + faults/settle_error (rad: that joint ends so far from a trajectory's goal),
 //   ft_sensor/{payload_mass, payload_com, force_noise, torque_noise}; camera ones in cameras.h.
 #pragma once
 

@@ -54,6 +54,11 @@ class Executor {
   RunReport run();
   // Re-runs one block and what is downstream of it.
   RunReport runBlock(const std::string& block);
+  // Runs one block only, on the values its inputs hold now (paper 3.2: "execute only single
+  // blocks"). Its downstream is marked out of date, not run: the next run() refreshes it, and the
+  // block itself too while a block above it is out of date. A block with feedback runs its sweep
+  // (the blocks between it and its score are part of it). Throws NetError for an unknown block.
+  RunReport runBlockOnly(const std::string& block);
   // Runs every block again, sources included (e.g. one more loop of a repeated sub-net).
   RunReport runAll();
 

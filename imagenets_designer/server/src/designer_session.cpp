@@ -189,6 +189,7 @@ void DesignerSession::loadFile(const std::string& path) {
   doc_ = std::move(next);
   file_ = path;
   saved_text_ = doc_.text();
+  ++document_;
   undo_.clear();
   redo_.clear();
   errors_.clear();
@@ -280,6 +281,9 @@ bool DesignerSession::configurationChanged(const NetDocument& previous, const Ne
 }
 
 void DesignerSession::apply(NetDocument next, const std::string& merge, bool notify) {
+  // The state every tab gets holds the net's text: an edit that cannot be written is refused
+  // here, before it is installed, rather than leaving a net no tab can be shown.
+  next.text();
   NetDocument previous = doc_;
   install(std::move(next));
   if (merge.empty() || undo_.empty() || undo_.back().merge != merge || !redo_.empty()) {
@@ -379,6 +383,7 @@ json DesignerSession::netState() const {
           {"dirty", text != saved_text_},
           {"yaml", text},
           {"revision", revision_},
+          {"document", document_},
           {"can_undo", !undo_.empty()},
           {"can_redo", !redo_.empty()},
           {"auto_run", auto_run_},
@@ -410,6 +415,7 @@ const std::map<std::string, DesignerSession::Handler>& DesignerSession::handlers
       {"run", &DesignerSession::opRun},
       {"run_all", &DesignerSession::opRunAll},
       {"run_block", &DesignerSession::opRunBlock},
+      {"run_block_only", &DesignerSession::opRunBlockOnly},
       {"cancel", &DesignerSession::opCancel},
       {"open", &DesignerSession::opOpen},
       {"save", &DesignerSession::opSave},
@@ -572,7 +578,7 @@ json DesignerSession::opSetProperty(int, const json& request) {
   // With auto_run the state goes out once, after the run, with the new stats.
   apply(std::move(next), "property " + name + "." + property, !auto_run_);
   json reply = json::object();
-  if (auto_run_) reply["run"] = runAndReport(0, "");
+  if (auto_run_) reply["run"] = runAndReport(RunKind::OutOfDate, "");
   return reply;
 }
 
@@ -711,12 +717,18 @@ json DesignerSession::runReport(const RunReport& report) const {
   return {{"ran", report.ran}, {"failed", report.failed}, {"not_run", report.not_run}, {"cancelled", report.cancelled}};
 }
 
-json DesignerSession::runAndReport(int kind, const std::string& block) {
+json DesignerSession::runAndReport(RunKind kind, const std::string& block) {
   {
     std::lock_guard<std::mutex> lock(cached_mutex_);
     cached_.clear();
   }
-  RunReport report = kind == 0 ? executor_->run() : kind == 1 ? executor_->runAll() : executor_->runBlock(block);
+  RunReport report;
+  switch (kind) {
+    case RunKind::OutOfDate: report = executor_->run(); break;
+    case RunKind::All: report = executor_->runAll(); break;
+    case RunKind::FromBlock: report = executor_->runBlock(block); break;
+    case RunKind::BlockOnly: report = executor_->runBlockOnly(block); break;
+  }
   ++run_count_;
   // The new values first: a page shows a preview before it digests the new state.
   sendPortData();
@@ -727,13 +739,19 @@ json DesignerSession::runAndReport(int kind, const std::string& block) {
   return reply;
 }
 
-json DesignerSession::opRun(int, const json&) { return runAndReport(0, ""); }
-json DesignerSession::opRunAll(int, const json&) { return runAndReport(1, ""); }
+json DesignerSession::opRun(int, const json&) { return runAndReport(RunKind::OutOfDate, ""); }
+json DesignerSession::opRunAll(int, const json&) { return runAndReport(RunKind::All, ""); }
 
 json DesignerSession::opRunBlock(int, const json& request) {
   const std::string name = stringField(request, "block");
   if (executor_->net().findNode(name) < 0) throw RequestError("no block named '" + name + "'");
-  return runAndReport(2, name);
+  return runAndReport(RunKind::FromBlock, name);
+}
+
+json DesignerSession::opRunBlockOnly(int, const json& request) {
+  const std::string name = stringField(request, "block");
+  if (executor_->net().findNode(name) < 0) throw RequestError("no block named '" + name + "'");
+  return runAndReport(RunKind::BlockOnly, name);
 }
 
 json DesignerSession::opCancel(int, const json&) {
@@ -873,7 +891,7 @@ void DesignerSession::sendPortData(int client) {
       if (sent != sent_.end() && sent->second == value.data) continue;
       auto& cached = encoded_[slot];
       if (!cached.second || cached.first != value.data) {
-        json header = {{"port", port}, {"revision", revision_}, {"run", run_count_}};
+        json header = {{"port", port}, {"revision", revision_}, {"run", run_count_}, {"document", document_}};
         try {
           cached = {value.data, std::make_shared<const std::string>(encodePortFrame(value, mode, header))};
         } catch (const std::exception& e) {

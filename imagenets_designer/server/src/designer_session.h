@@ -94,6 +94,7 @@ class DesignerSession {
   nlohmann::json opRun(int, const nlohmann::json&);
   nlohmann::json opRunAll(int, const nlohmann::json&);
   nlohmann::json opRunBlock(int, const nlohmann::json&);
+  nlohmann::json opRunBlockOnly(int, const nlohmann::json&);
   nlohmann::json opCancel(int, const nlohmann::json&);
   // Files and export.
   nlohmann::json opOpen(int, const nlohmann::json&);
@@ -123,7 +124,8 @@ class DesignerSession {
                            const std::string* text);
   void loadFile(const std::string& path);  // throws NetError; not an undo step
   nlohmann::json runReport(const RunReport& report) const;
-  nlohmann::json runAndReport(int kind, const std::string& block);
+  enum class RunKind { OutOfDate, All, FromBlock, BlockOnly };
+  nlohmann::json runAndReport(RunKind kind, const std::string& block);
   void changed();          // revision++, push the net state
   void sendPortData();     // every watched port whose value changed, to its tab
   void sendPortData(int client);
@@ -142,6 +144,9 @@ class DesignerSession {
   std::string saved_text_;
   std::vector<std::string> errors_;
   long revision_ = 0;
+  // Counts the nets opened (a file, a sub-net's file): what a page shows of one net (previews,
+  // run results) must not carry over to another, even one with the same block names.
+  long document_ = 0;
   long run_count_ = 0;
   std::mutex cached_mutex_;
   std::vector<std::string> cached_;  // blocks served from cache in the run in progress

@@ -76,6 +76,8 @@ void HttpConnection::respond() {
     finish(http::status::bad_request, "text/plain", "bad path\n");
   } else {
     if (target == "/") target = "/index.html";
+    // Browsers ask for /favicon.ico whatever the page links: the page's SVG icon answers it.
+    if (target == "/favicon.ico" && !fs::is_regular_file(fs::path(web_root_) / target)) target = "/favicon.svg";
     const fs::path file = fs::path(web_root_) / target;
     if (!web_root_.empty() && fs::is_regular_file(file)) {
       std::ifstream in(file.string(), std::ios::binary);
@@ -83,6 +85,8 @@ void HttpConnection::respond() {
       finish(http::status::ok, mimeType(file.string()), std::move(body));
     } else if (target == "/index.html") {
       finish(http::status::ok, "text/html; charset=utf-8", kNoPage);
+    } else if (target == "/favicon.svg") {
+      finish(http::status::no_content, "text/plain", "");  // the page is not built: no icon, no error
     } else {
       finish(http::status::not_found, "text/plain", "not found: " + target + "\n");
     }

@@ -1,9 +1,5 @@
 // The protocol over a real WebSocket on 127.0.0.1: every bad message gets an error that names
 // what is wrong, and the server keeps serving (the same connection answers the next request).
-#include <boost/asio.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
-
 #include "designer_test_util.h"
 
 using namespace imagenets::designer;
@@ -122,18 +118,18 @@ TEST_F(DesignerTest, PathsOutsideTheRootsAreRefused) {
 
 TEST_F(DesignerTest, ServesThePageOverHttp) {
   start();
-  namespace beast = boost::beast;
-  namespace http = beast::http;
-  boost::asio::io_context ioc;
-  beast::tcp_stream stream(ioc);
-  stream.connect(boost::asio::ip::tcp::endpoint(boost::asio::ip::make_address("127.0.0.1"), server_->port()));
-  http::request<http::string_body> req{http::verb::get, "/", 11};
-  req.set(http::field::host, "127.0.0.1");
-  http::write(stream, req);
-  beast::flat_buffer buffer;
-  http::response<http::string_body> res;
-  http::read(stream, buffer, res);
+  namespace http = boost::beast::http;
+  const auto res = httpGet(server_->port(), "/");
   EXPECT_EQ(res.result(), http::status::ok);
   expectContains(res.body(), "<html");
   expectContains(std::string(res[http::field::content_type]), "text/html");
+  // The icon a browser asks for by itself is no error (the page's icon, or nothing when the page
+  // is not built).
+  const auto icon = httpGet(server_->port(), "/favicon.ico");
+  EXPECT_TRUE(icon.result() == http::status::ok || icon.result() == http::status::no_content) << icon.result();
+  if (icon.result() == http::status::ok) {
+    EXPECT_EQ(std::string(icon[http::field::content_type]), "image/svg+xml");
+    expectContains(icon.body(), "<svg");
+  }
+  EXPECT_EQ(httpGet(server_->port(), "/nothing.here").result(), http::status::not_found);
 }

@@ -5,6 +5,9 @@
 #include <memory>
 #include <string>
 
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
 #include <boost/filesystem.hpp>
 #include <gtest/gtest.h>
 
@@ -47,7 +50,8 @@ class DesignerTest : public ::testing::Test {
     namespace fs = boost::filesystem;
     fs::create_directories(root_ / "nets");
     for (const char* dir : {"images", "cameras", "markers", "friend"}) {
-      if (!fs::exists(root_ / dir)) fs::create_directory_symlink(fs::path(kSourceDir) / "config" / dir, root_ / dir);
+      // symlink_status: a link made by an earlier call may point at a folder this checkout lacks.
+      if (!fs::exists(fs::symlink_status(root_ / dir))) fs::create_directory_symlink(fs::path(kSourceDir) / "config" / dir, root_ / dir);
     }
     const fs::path target = root_ / "nets" / name;
     fs::copy_file(fs::path(kSourceDir) / "config" / "nets" / name, target);
@@ -70,6 +74,22 @@ inline std::string failure(const nlohmann::json& reply) {
 }
 
 inline void expectOk(const nlohmann::json& reply) { EXPECT_TRUE(reply.value("ok", false)) << reply.dump(); }
+
+// GET `target` from the server on 127.0.0.1:port.
+inline boost::beast::http::response<boost::beast::http::string_body> httpGet(int port, const std::string& target) {
+  namespace beast = boost::beast;
+  namespace http = beast::http;
+  boost::asio::io_context ioc;
+  beast::tcp_stream stream(ioc);
+  stream.connect(boost::asio::ip::tcp::endpoint(boost::asio::ip::make_address("127.0.0.1"), port));
+  http::request<http::string_body> req{http::verb::get, target, 11};
+  req.set(http::field::host, "127.0.0.1");
+  http::write(stream, req);
+  beast::flat_buffer buffer;
+  http::response<http::string_body> res;
+  http::read(stream, buffer, res);
+  return res;
+}
 
 }  // namespace designer
 }  // namespace imagenets

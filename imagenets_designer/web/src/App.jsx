@@ -1,20 +1,26 @@
 import React, { useCallback, useEffect, useMemo, useRef, useState } from 'react';
 import {
-  ReactFlow, ReactFlowProvider, Background, Controls, MiniMap, applyNodeChanges, applyEdgeChanges, useReactFlow,
-  useUpdateNodeInternals,
+  ReactFlow, ReactFlowProvider, Background, Controls, ControlButton, MiniMap, applyNodeChanges, applyEdgeChanges, useReactFlow,
+  useUpdateNodeInternals, useNodesInitialized,
 } from '@xyflow/react';
 import { Connection } from './connection.js';
 import { BlockNode } from './BlockNode.jsx';
 import { BlockBrowser } from './BlockBrowser.jsx';
 import { PropertiesPanel } from './PropertiesPanel.jsx';
 import { BlockSearch, ExportDialog, FileDialog } from './Dialogs.jsx';
-import { DataDialog } from './DataDialog.jsx';
+import { DataWindow } from './DataWindow.jsx';
+import { FeedbackEdge } from './FeedbackEdge.jsx';
+import { LinkRefusal } from './LinkRefusal.jsx';
 import { SubnetView } from './SubnetView.jsx';
 import { YamlPane } from './YamlPane.jsx';
 import { layeredLayout } from './layout.js';
-import { flowFromNet, split } from './flow.js';
+import { FEEDBACK_HANDLE, flowFromNet, split } from './flow.js';
+import { readableViewport } from './readableFit.js';
 
 const nodeTypes = { block: BlockNode };
+const edgeTypes = { feedback: FeedbackEdge };
+// Below this canvas width the minimap would cover nodes (a 1366 px screen): off unless asked for.
+const MINIMAP_MIN_WIDTH = 1000;
 
 export function App() {
   return <ReactFlowProvider><Designer /></ReactFlowProvider>;
@@ -41,9 +47,12 @@ function Designer() {
   const [showYaml, setShowYaml] = useState(true);
   const [ghost, setGhost] = useState(null);
   const [connected, setConnected] = useState(false);
+  const [refusal, setRefusal] = useState(null); // {text, at}: a refused link, where it was dropped
+  const [minimap, setMinimap] = useState(null); // null: by the canvas's size
   const wrapper = useRef(null);
   const clipboard = useRef(null);
-  const fitAtStart = useRef(null);
+  const pendingFit = useRef(false); // fit once the nodes of a newly shown net are measured
+  const pointer = useRef({ x: 0, y: 0 });
   const colors = registry?.types || {};
 
   const say = (text, error = false) => setMessage({ text, error, at: Date.now() });
@@ -54,13 +63,33 @@ function Designer() {
   const colorsRef = useRef({});
   const flowRef = useRef({ nodes, edges });
   flowRef.current = { nodes, edges };
-  const fileRef = useRef(undefined);
+  // Another net opened (here or in another tab): nothing shown of the old one carries over, not
+  // even to a block of the same name (previews, data, run results, selection).
+  const documentRef = useRef(undefined);
+  const nodeData = useRef(new Map());
+  const forgetShown = useCallback(() => {
+    setPreviews((p) => { Object.values(p).forEach((v) => v?.bitmap?.close()); return {}; });
+    setWatched(new Set());
+    setCached(new Set());
+    setRunning(new Set());
+    setMessage(null);
+    setDataPort(null);
+    setFullData(null);
+    setSubnet(null);
+    setSearch(null);
+    setRefusal(null);
+    nodeData.current.clear();
+  }, []);
   const applyNet = useCallback((state) => {
+    const first = documentRef.current === undefined;
+    const another = !first && documentRef.current !== state.document;
+    documentRef.current = state.document;
+    if (another) forgetShown();
+    // A net shown anew is fitted once measured; an empty one stays at 100 % (its first block
+    // stays where it was dropped).
+    if (first || another) pendingFit.current = state.blocks.length > 0;
     setNet(state);
-    // Another file: nothing of the old canvas carries over (block names may repeat).
-    const same = fileRef.current === undefined || fileRef.current === state.file;
-    fileRef.current = state.file;
-    const built = flowFromNet(state, colorsRef.current, same ? flowRef.current.nodes : [], same ? flowRef.current.edges : []);
+    const built = flowFromNet(state, colorsRef.current, another ? [] : flowRef.current.nodes, another ? [] : flowRef.current.edges);
     flowRef.current = built;
     setNodes(built.nodes);
     setEdges(built.edges);
@@ -102,6 +131,7 @@ function Designer() {
   };
 
   const onData = ({ header, payload }) => {
+    if (header.document !== undefined && header.document !== documentRef.current) return; // another net's value
     const data = { header, payload, value: header.value };
     if (header.mode === 'full') {
       setFullData((old) => (old && old.header.port !== header.port ? old : data));
@@ -143,6 +173,7 @@ function Designer() {
     attempt('watch', { ports: dataPort ? [dataPort.port] : [], mode: 'full' });
   }, [dataPort, connected]);
 
+  const closeData = useCallback(() => setDataPort(null), []);
   const actions = useMemo(() => ({
     toggleWatch: (key) => setWatched((w) => { const n = new Set(w); if (n.has(key)) n.delete(key); else n.add(key); return n; }),
     openData: (port, type) => setDataPort({ port, type }),
@@ -154,7 +185,6 @@ function Designer() {
 
   // Each node's data object changes only when something it shows changes, so that the memoized
   // BlockNode re-renders only the nodes a message concerns (previews arrive many times a second).
-  const nodeData = useRef(new Map());
   const shownNodes = useMemo(() => {
     const blocks = new Map((net?.blocks || []).map((b) => [b.name, b]));
     return nodes.filter((n) => blocks.has(n.id)).map((n) => {
@@ -171,7 +201,7 @@ function Designer() {
 
   // --- edits -----------------------------------------------------------------------------------
   const run = async (op, args) => {
-    say(`${op.replace('_', ' ')}…`);
+    say(`${op.replaceAll('_', ' ')}…`);
     const r = await attempt(op, args);
     if (r) say(`ran ${r.ran.length}, failed ${r.failed.length}, not run ${r.not_run.length}${r.cancelled ? ', cancelled' : ''}`, r.failed.length > 0);
     setRunning(new Set());
@@ -182,10 +212,11 @@ function Designer() {
     try {
       return (await request('add_block', { type, position: at })).name;
     } catch (err) {
-      // A block built from a file (a sub-net's `net`) cannot exist without it: ask for the file.
+      // A block built from a file (a sub-net's `net`) cannot exist without it: ask for the file,
+      // but only when the engine said so of this block type and named the path property.
       const entry = registry.blocks.find((b) => b.type === type);
       const paths = (entry?.properties || []).filter((p) => p.path);
-      const property = paths.find((p) => err.message.includes(`'${p.name}'`)) || paths[0];
+      const property = err.message.includes(`(${type})`) && paths.find((p) => err.message.includes(`'${p.name}'`));
       if (!property) { say(err.message, true); return null; }
       say(err.message, true);
       return new Promise((resolve) => setDialog({ kind: 'choose', title: `${property.name} of the new ${type.replace(/^imagenets\//, '')}`,
@@ -202,8 +233,36 @@ function Designer() {
     const names = selectedNames();
     if (names.length) await attempt('remove_blocks', { names });
     for (const e of edges.filter((x) => x.selected && !names.includes(x.source) && !names.includes(x.target))) {
-      await attempt('remove_link', { from: e.data.from, to: e.data.to });
+      // A feedback edge removed is the feedback turned off.
+      if (e.type === 'feedback') await attempt('set_feedback', { block: e.target, feedback: null });
+      else await attempt('remove_link', { from: e.data.from, to: e.data.to });
     }
+  };
+  // A link dropped on a port, or a feedback's score moved onto another port; a refusal is shown
+  // whole where the drag ended.
+  const refuse = (text) => {
+    const r = wrapper.current.getBoundingClientRect();
+    const x = pointer.current.x - r.left, y = Math.max(4, Math.min(pointer.current.y - r.top + 14, r.height - 140));
+    // Below and right of the drop point, or left of it where the canvas ends.
+    const at = x + 14 + 390 <= r.width ? { left: x + 14, top: y } : { right: Math.max(4, r.width - x + 14), top: y };
+    setRefusal({ text, at });
+    say(text, true);
+  };
+  const connect = async (c) => {
+    const from = `${c.source}.${c.sourceHandle}`;
+    try {
+      if (c.targetHandle === FEEDBACK_HANDLE) {
+        const block = net.blocks.find((b) => b.name === c.target);
+        await request('set_feedback', { block: c.target, feedback: { ...block.feedback, score: from } });
+        say(`${c.target}'s feedback scores by ${from}`);
+      } else {
+        await request('add_link', { from, to: `${c.target}.${c.targetHandle}` });
+      }
+      setRefusal(null);
+    } catch (err) { refuse(err.message); }
+  };
+  const reconnect = (old, c) => {
+    if (old.type === 'feedback' && c.target === old.target && c.targetHandle === FEEDBACK_HANDLE) connect(c);
   };
   const copy = () => {
     const names = new Set(selectedNames());
@@ -231,11 +290,24 @@ function Designer() {
       setNodes((ns) => ns.map((n) => ({ ...n, selected: names.has(n.id) })));
     }
   };
+  const fitReadable = useCallback(() => {
+    const shown = flow.getNodes();
+    if (!shown.length || !wrapper.current) return;
+    const r = wrapper.current.getBoundingClientRect();
+    flow.setViewport(readableViewport(flow.getNodesBounds(shown), r.width, r.height));
+  }, [flow]);
+  const measured = useNodesInitialized();
+  useEffect(() => {
+    if (measured && pendingFit.current && nodes.length) {
+      pendingFit.current = false;
+      fitReadable();
+    }
+  }, [measured, nodes, fitReadable]);
   const autoLayout = () => {
     const sizes = Object.fromEntries(flow.getNodes().filter((n) => n.measured?.width)
       .map((n) => [n.id, { width: n.measured.width, height: n.measured.height }]));
     const positions = layeredLayout(net.blocks, net.links, sizes);
-    attempt('move_blocks', { positions }).then(() => setTimeout(() => flow.fitView({ padding: 0.1, maxZoom: 1 }), 50));
+    attempt('move_blocks', { positions }).then(() => setTimeout(fitReadable, 50));
   };
   const save = async (path) => {
     const r = await request('save', path ? { path } : {});
@@ -266,8 +338,15 @@ function Designer() {
   };
   useEffect(() => {
     const handler = (e) => keys.current(e);
+    const track = (e) => { pointer.current = { x: e.clientX, y: e.clientY }; };
     window.addEventListener('keydown', handler);
-    return () => window.removeEventListener('keydown', handler);
+    window.addEventListener('pointermove', track, true);
+    window.addEventListener('pointerup', track, true);
+    return () => {
+      window.removeEventListener('keydown', handler);
+      window.removeEventListener('pointermove', track, true);
+      window.removeEventListener('pointerup', track, true);
+    };
   }, []);
 
   // --- dragging a block from the browser (pointer events, so it works everywhere) --------------
@@ -311,7 +390,8 @@ function Designer() {
   if (!registry || !net) {
     return <div className="loading">{message ? message.text : 'connecting to the designer…'}</div>;
   }
-  if (fitAtStart.current === null) fitAtStart.current = net.blocks.length > 0; // an empty canvas stays at 100%
+  const canvasWidth = wrapper.current?.getBoundingClientRect().width ?? window.innerWidth - 550;
+  const showMinimap = minimap ?? canvasWidth >= MINIMAP_MIN_WIDTH;
   const selected = nodes.filter((n) => n.selected);
   const selectedBlock = selected.length === 1 ? net.blocks.find((b) => b.name === selected[0].id) : null;
   const fileName = net.file ? net.file.split('/').pop() : 'untitled net';
@@ -325,7 +405,12 @@ function Designer() {
         <span className="sep" />
         <button data-testid="run" title="Ctrl+Enter" onClick={() => run('run')}>▶ Run</button>
         <button data-testid="run-all" title="run every block, cached or not" onClick={() => run('run_all')}>Run all</button>
-        <button data-testid="run-block" disabled={!selectedBlock} onClick={() => run('run_block', { block: selectedBlock.name })}>Run block</button>
+        <button data-testid="run-block-only" disabled={!selectedBlock}
+          title="run this block only, on the values its inputs hold now (what follows it is left out of date)"
+          onClick={() => run('run_block_only', { block: selectedBlock.name })}>Run block only</button>
+        <button data-testid="run-block" disabled={!selectedBlock}
+          title="run this block again and everything downstream of it"
+          onClick={() => run('run_block', { block: selectedBlock.name })}>Run from here</button>
         <button data-testid="cancel" disabled={!running.size} onClick={() => attempt('cancel')}>Cancel</button>
         <label title="re-run the changed block and its downstream after each property change">
           <input type="checkbox" data-testid="auto-run" checked={net.auto_run !== false}
@@ -346,14 +431,16 @@ function Designer() {
         <div className="canvas" ref={wrapper} onDoubleClick={(e) => {
           if (e.target.closest('.react-flow__pane')) openSearch(e.clientX, e.clientY);
         }}>
+          {refusal && <LinkRefusal refusal={refusal} onClose={() => setRefusal(null)} />}
           {net.errors?.length > 0 && <div className="net-errors" data-testid="net-errors">{net.errors.join('\n')}</div>}
-          <ReactFlow nodes={shownNodes} edges={edges} nodeTypes={nodeTypes} minZoom={0.1} maxZoom={4}
+          <ReactFlow nodes={shownNodes} edges={edges} nodeTypes={nodeTypes} edgeTypes={edgeTypes} minZoom={0.1} maxZoom={4}
             onNodesChange={(changes) => setNodes((ns) => applyNodeChanges(changes, ns))}
             onEdgesChange={(changes) => setEdges((es) => applyEdgeChanges(changes.filter((c) => c.type !== 'remove'), es))}
             onNodeDragStop={(e, node, dragged) => attempt('move_blocks', {
               positions: Object.fromEntries(dragged.map((n) => [n.id, [Math.round(n.position.x), Math.round(n.position.y)]])),
             })}
-            onConnect={(c) => attempt('add_link', { from: `${c.source}.${c.sourceHandle}`, to: `${c.target}.${c.targetHandle}` })}
+            onConnect={connect} onReconnect={reconnect}
+            onConnectStart={() => setRefusal(null)} onPaneClick={() => setRefusal(null)}
             onConnectEnd={(e, state) => {
               if (state.toNode || !state.fromHandle || state.fromHandle.type !== 'source') return;
               const point = 'changedTouches' in e ? e.changedTouches[0] : e;
@@ -361,11 +448,16 @@ function Designer() {
                 ?.outputs.find((p) => p.name === state.fromHandle.id);
               if (port) openSearch(point.clientX, point.clientY, port.type, `${state.fromNode.id}.${port.name}`);
             }}
-            deleteKeyCode={null} zoomOnDoubleClick={false} colorMode="dark"
-            fitView={fitAtStart.current} fitViewOptions={{ padding: 0.1, maxZoom: 1 }}>
+            deleteKeyCode={null} zoomOnDoubleClick={false} colorMode="dark">
             <Background />
-            <Controls />
-            <MiniMap pannable zoomable nodeColor={(n) => (running.has(n.id) ? '#f5c542' : '#8aa')} />
+            {/* Our own fit button: the built-in one runs React Flow's fitView as well, which would
+                undo the readable zoom. */}
+            <Controls showFitView={false}>
+              <ControlButton data-testid="fit-view" title="fit the net at a readable zoom" onClick={fitReadable}>⛶</ControlButton>
+              <ControlButton data-testid="toggle-minimap" title="show or hide the minimap"
+                onClick={() => setMinimap(!showMinimap)}>▦</ControlButton>
+            </Controls>
+            {showMinimap && <MiniMap pannable zoomable nodeColor={(n) => (running.has(n.id) ? '#f5c542' : '#8aa')} />}
           </ReactFlow>
           {search && <BlockSearch registry={registry} inputType={search.inputType} at={search.at}
             onPick={pickSearch} onClose={() => setSearch(null)} />}
@@ -380,11 +472,11 @@ function Designer() {
         </div>
       </div>
       {ghost && <div className="drag-ghost" style={{ left: ghost.x + 8, top: ghost.y + 8 }}>{ghost.type}</div>}
-      {dataPort && <DataDialog port={dataPort.port} type={dataPort.type}
-        data={fullData && fullData.header.port === dataPort.port ? fullData : null} onClose={() => setDataPort(null)} />}
+      {dataPort && <DataWindow key={dataPort.port} port={dataPort.port} type={dataPort.type}
+        data={fullData && fullData.header.port === dataPort.port ? fullData : null} onClose={closeData} />}
       {subnet && <SubnetView {...subnet} colors={colors} request={request} onClose={() => setSubnet(null)} />}
       {dialog?.kind === 'open' && <FileDialog title="Open" initialPath={net.file} request={request}
-        onDone={(path) => request('open', { path }).then(() => setTimeout(() => flow.fitView({ padding: 0.1 }), 50))}
+        onDone={(path) => request('open', { path }).then((r) => say(`opened ${r.file}`))}
         onClose={() => setDialog(null)} />}
       {dialog?.kind === 'saveas' && <FileDialog title="Save as" initialPath={net.file} request={request}
         onDone={(path) => save(path)} onClose={() => setDialog(null)} />}

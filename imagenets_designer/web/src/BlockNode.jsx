@@ -1,6 +1,7 @@
 import React, { memo } from 'react';
 import { Handle, Position } from '@xyflow/react';
 import { Preview } from './Preview.jsx';
+import { FEEDBACK_COLOR, FEEDBACK_HANDLE } from './flow.js';
 
 // One block on the canvas: ports coloured by type, status, wall and CPU time, preview boxes.
 export const BlockNode = memo(function BlockNode({ data, selected }) {
@@ -12,6 +13,9 @@ export const BlockNode = memo(function BlockNode({ data, selected }) {
   if (selected) classes.push('selected');
   return (
     <div className={classes.join(' ')} data-block={block.name}>
+      {block.feedback && <Handle type="target" position={Position.Top} id={FEEDBACK_HANDLE} className="feedback-handle"
+        title={`feedback on ${block.feedback.property}: drop a std_msgs/Float64 output here to score by it`}
+        style={{ background: FEEDBACK_COLOR }} />}
       <div className="block-title">
         <span className="block-name">{block.name}</span>
         <span className="block-type">{block.type.replace(/^imagenets\//, '')}</span>
@@ -34,10 +38,13 @@ export const BlockNode = memo(function BlockNode({ data, selected }) {
       <div className="ports">
         <div className="inputs">
           {block.inputs.map((p) => (
-            <div key={p.name} className="port in" title={`${p.type}${p.doc ? ` — ${p.doc}` : ''}`}>
+            // An optional port: hollow handle and a dimmed italic name (a '?' read like a digit).
+            <div key={p.name} className={`port in ${p.optional ? 'optional' : ''}`}
+              title={`${p.type}${p.optional ? ' (optional: the block runs without it)' : ''}${p.doc ? ` — ${p.doc}` : ''}`}>
               <Handle type="target" position={Position.Left} id={p.name}
-                style={{ background: colors[p.type] || '#888' }} />
-              <span>{p.name}{p.optional ? '?' : ''}</span>
+                style={p.optional ? { background: 'transparent', borderColor: colors[p.type] || '#888' }
+                  : { background: colors[p.type] || '#888' }} />
+              <span className="port-name">{p.name}</span>
             </div>
           ))}
         </div>
@@ -50,7 +57,7 @@ export const BlockNode = memo(function BlockNode({ data, selected }) {
                   data-port={key} onClick={() => actions.toggleWatch(key)}>◉</button>
                 <button className="small nodrag open-data" title="open the data dialog" data-port={key}
                   onClick={() => actions.openData(key, p.type)}>⤢</button>
-                <span>{p.name}</span>
+                <span className="port-name">{p.name}</span>
                 <Handle type="source" position={Position.Right} id={p.name}
                   style={{ background: colors[p.type] || '#888' }} />
               </div>

@@ -42,18 +42,27 @@ export function BlockSearch({ registry, inputType, at, onPick, onClose }) {
   );
 }
 
-// Open / save as: a path field and the server's listing of a folder inside the allowed roots.
+// Open / save as: a path field, the folders the designer may read and write (the net's folder,
+// imagenets_blocks' config/, each --root), and the server's listing of a folder among them.
 export function FileDialog({ title, initialPath, request, onDone, onClose }) {
   const [path, setPath] = useState(initialPath || '');
   const [listing, setListing] = useState(null);
+  const [roots, setRoots] = useState([]);
   const [error, setError] = useState(null);
   const list = async (dir) => {
     try {
-      setListing(await request('list_files', dir ? { dir } : {}));
+      const r = await request('list_files', dir ? { dir } : {});
+      setListing(r);
+      setRoots(r.roots || []);
       setError(null);
-    } catch (err) { setError(err.message); }
+      return true;
+    } catch (err) { setError(err.message); return false; }
   };
-  useEffect(() => { list(initialPath ? initialPath.replace(/\/[^/]*$/, '') : undefined); }, []);
+  // A folder outside the allowed ones lists the net's folder instead (and says why).
+  useEffect(() => {
+    const dir = initialPath ? initialPath.replace(/\/[^/]*$/, '') : undefined;
+    list(dir).then((ok) => { if (!ok && dir) list(); });
+  }, []);
   const submit = async () => {
     try { await onDone(path); onClose(); } catch (err) { setError(err.message); }
   };
@@ -65,9 +74,15 @@ export function FileDialog({ title, initialPath, request, onDone, onClose }) {
         <button data-testid="file-ok" onClick={submit}>{title}</button>
       </div>
       {error && <div className="error" data-testid="file-error">{error}</div>}
+      {roots.length > 0 && <div className="file-roots" data-testid="file-roots">
+        <div className="file-roots-head">allowed folders (start the designer with --root DIR for another):</div>
+        {roots.map((r) => (
+          <div key={r} className={`file-root ${listing?.dir === r ? 'current' : ''}`} data-root={r} onClick={() => list(r)}>{r}/</div>
+        ))}
+      </div>}
       {listing && <div className="file-list">
         <div className="file-dir">{listing.dir}</div>
-        <div className="file-entry dir" onClick={() => list(`${listing.dir}/..`)}>..</div>
+        {!roots.includes(listing.dir) && <div className="file-entry dir" onClick={() => list(`${listing.dir}/..`)}>..</div>}
         {listing.entries.map((e) => (
           <div key={e.name} className={`file-entry ${e.dir ? 'dir' : ''}`}
             onClick={() => (e.dir ? list(`${listing.dir}/${e.name}`) : setPath(`${listing.dir}/${e.name}`))}>

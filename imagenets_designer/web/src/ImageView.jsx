@@ -2,7 +2,7 @@ import React, { useEffect, useRef, useState } from 'react';
 import { pixelValues, toImageData } from './rawImage.js';
 
 // A raw image with wheel zoom (to single pixels), drag to pan, and the pixel under the cursor.
-export function ImageView({ header, payload }) {
+export function ImageView({ header, payload, width = 800, height = 560 }) {
   const canvas = useRef(null);
   const bitmap = useRef(null);
   const [view, setView] = useState(null); // {scale, x, y}: screen = image * scale + offset
@@ -30,7 +30,7 @@ export function ImageView({ header, payload }) {
     g.imageSmoothingEnabled = false;
     g.setTransform(view.scale, 0, 0, view.scale, view.x, view.y);
     g.drawImage(bitmap.current, 0, 0);
-  }, [view]);
+  }, [view, width, height]);  // a new canvas size clears the canvas
 
   const toImage = (e) => {
     const r = canvas.current.getBoundingClientRect();
@@ -58,7 +58,7 @@ export function ImageView({ header, payload }) {
   const format = (v) => Number.isInteger(v) ? String(v) : v.toFixed(3);
   return (
     <div className="image-view">
-      <canvas ref={canvas} width={800} height={560} className="image-canvas"
+      <canvas ref={canvas} width={Math.max(1, Math.floor(width))} height={Math.max(1, Math.floor(height))} className="image-canvas"
         data-scale={view?.scale} data-offset-x={view?.x} data-offset-y={view?.y}
         onWheel={onWheel} onMouseMove={onMove} onMouseLeave={() => { drag.current = null; setCursor(null); }}
         onMouseDown={(e) => { drag.current = { cx: e.clientX, cy: e.clientY, x: view.x, y: view.y }; }}

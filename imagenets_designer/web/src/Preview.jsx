@@ -35,8 +35,23 @@ function round(v) {
   return typeof v === 'number' ? (Math.abs(v) >= 100 ? v.toFixed(1) : v.toFixed(3)) : String(v);
 }
 
-function precise(v) {
-  return typeof v === 'number' ? String(Number(v.toPrecision(4))) : String(v);
+// A number as short as it can be while saying what it is: integers as integers ("40", not
+// "40.000"), others to 4 significant digits.
+export function short(v) {
+  if (typeof v !== 'number') return String(v);
+  return Number.isInteger(v) ? String(v) : String(Number(v.toPrecision(4)));
+}
+
+// The two ends of an axis, with as many digits as it takes to tell them apart (0.99268 / 0.99274,
+// not 0.9927 twice); one label when both ends are the same value.
+export function axisEnds(lo, hi) {
+  if (lo === hi) return [short(lo)];
+  for (let digits = 4; digits <= 15; ++digits) {
+    const a = Number.isInteger(lo) ? String(lo) : String(Number(lo.toPrecision(digits)));
+    const b = Number.isInteger(hi) ? String(hi) : String(Number(hi.toPrecision(digits)));
+    if (a !== b) return [a, b];
+  }
+  return [String(lo), String(hi)];
 }
 
 function summary(value) {
@@ -51,33 +66,48 @@ function noteShown(port, revision) {
   if (shown.length > 1000) shown.splice(0, shown.length - 1000);
 }
 
-// Feedback trace: score over the tried values, the chosen value marked.
+// Feedback trace: score over the tried values, the chosen value marked; the x axis is the tuned
+// property, the y axis the score.
 export function TracePlot({ trace, width = 240, height = 130 }) {
   const xs = trace.values || [], ys = trace.scores || [];
-  const pad = 22;
   const finite = ys.filter(Number.isFinite);
-  const [x0, x1] = [Math.min(...xs), Math.max(...xs)];
+  const [x0, x1] = xs.length ? [Math.min(...xs), Math.max(...xs)] : [0, 1];
   // The scores' own range (a nearly flat curve still shows its maximum), 5% margin.
   const [lo, hi] = finite.length ? [Math.min(...finite), Math.max(...finite)] : [0, 1];
+  const xEnds = axisEnds(x0, x1), yEnds = axisEnds(lo, hi);
+  // Room on the left for the longer score label (about 5.5 px a character at the labels' size).
+  const pad = { left: Math.max(24, 6 + 5.5 * Math.max(...yEnds.map((t) => t.length))), bottom: 24 };
   const margin = (hi - lo) * 0.05 || Math.abs(hi) * 0.05 || 0.5;
   const [y0, y1] = [lo - margin, hi + margin];
-  const sx = (x) => pad + ((x - x0) / ((x1 - x0) || 1)) * (width - pad - 6);
-  const sy = (y) => height - pad + 4 - ((y - y0) / ((y1 - y0) || 1)) * (height - pad - 6);
+  const plotW = width - pad.left - 6, plotH = height - pad.bottom - 6;
+  // A single tried value sits in the middle of its axis.
+  const sx = (x) => pad.left + (x1 > x0 ? ((x - x0) / (x1 - x0)) * plotW : plotW / 2);
+  const sy = (y) => 4 + plotH - ((y - y0) / ((y1 - y0) || 1)) * plotH;
   const points = xs.map((x, i) => (Number.isFinite(ys[i]) ? `${sx(x)},${sy(ys[i])}` : null)).filter(Boolean);
   const chosen = trace.chosen_value;
+  const right = sx(chosen) > pad.left + plotW / 2;
   return (
     <svg className="trace-plot" data-testid="trace-plot" width={width} height={height}>
-      <rect x={pad} y={2} width={width - pad - 4} height={height - pad} className="plot-frame" />
+      <rect x={pad.left} y={2} width={plotW} height={plotH + 4} className="plot-frame" />
       <polyline points={points.join(' ')} className="plot-line" />
       {xs.map((x, i) => Number.isFinite(ys[i]) && <circle key={i} cx={sx(x)} cy={sy(ys[i])} r={1.6} className="plot-dot" />)}
-      {Number.isFinite(chosen) && <line x1={sx(chosen)} x2={sx(chosen)} y1={2} y2={height - pad + 2} className="plot-chosen" />}
-      <text x={pad} y={height - 8} className="plot-label">{round(x0)}</text>
-      <text x={width - 6} y={height - 8} textAnchor="end" className="plot-label">{round(x1)}</text>
-      <text x={2} y={10} className="plot-label">{precise(hi)}</text>
-      <text x={2} y={height - pad} className="plot-label">{precise(lo)}</text>
-      {Number.isFinite(chosen) && <text x={sx(chosen) + (sx(chosen) > width / 2 ? -3 : 3)} y={height - pad - 4}
-        textAnchor={sx(chosen) > width / 2 ? 'end' : 'start'} className="plot-chosen-label">
-        {round(chosen)} → {precise(trace.chosen_score)}</text>}
+      {Number.isFinite(chosen) && <line x1={sx(chosen)} x2={sx(chosen)} y1={2} y2={plotH + 6} className="plot-chosen" />}
+      {xEnds.length === 1
+        ? <text x={sx(x0)} y={height - 12} textAnchor="middle" className="plot-label x-label">{xEnds[0]}</text>
+        : <>
+          <text x={pad.left} y={height - 12} className="plot-label x-label">{xEnds[0]}</text>
+          <text x={width - 6} y={height - 12} textAnchor="end" className="plot-label x-label">{xEnds[1]}</text>
+        </>}
+      <text x={pad.left + plotW / 2} y={height - 2} textAnchor="middle" className="plot-axis">{trace.property}</text>
+      {yEnds.length === 1
+        ? <text x={pad.left - 3} y={sy(lo) + 3} textAnchor="end" className="plot-label y-label">{yEnds[0]}</text>
+        : <>
+          <text x={pad.left - 3} y={sy(hi) + 3} textAnchor="end" className="plot-label y-label">{yEnds[1]}</text>
+          <text x={pad.left - 3} y={sy(lo) + 3} textAnchor="end" className="plot-label y-label">{yEnds[0]}</text>
+        </>}
+      {Number.isFinite(chosen) && <text x={sx(chosen) + (right ? -3 : 3)} y={12}
+        textAnchor={right ? 'end' : 'start'} className="plot-chosen-label">
+        {short(chosen)} → {short(trace.chosen_score)}</text>}
     </svg>
   );
 }

@@ -2,9 +2,11 @@ import React, { useMemo } from 'react';
 import { ReactFlow, ReactFlowProvider, Background, Controls } from '@xyflow/react';
 import { Modal } from './Dialogs.jsx';
 import { BlockNode } from './BlockNode.jsx';
+import { FeedbackEdge } from './FeedbackEdge.jsx';
 import { flowFromNet } from './flow.js';
 
 const nodeTypes = { block: BlockNode };
+const edgeTypes = { feedback: FeedbackEdge };
 const noActions = { toggleWatch: () => {}, openData: () => {}, openSubnet: () => {} };
 
 // The inner net of an imagenets/Executor block (paper 3.5), read-only, with its blocks' stats.
@@ -23,7 +25,7 @@ export function SubnetView({ block, state, colors, request, onClose }) {
       <button data-testid="subnet-edit" onClick={edit}>Edit the inner net (opens its file)</button>
       <div className="subnet-canvas">
         <ReactFlowProvider>
-          <ReactFlow nodes={nodes} edges={edges} nodeTypes={nodeTypes} nodesConnectable={false}
+          <ReactFlow nodes={nodes} edges={edges} nodeTypes={nodeTypes} edgeTypes={edgeTypes} nodesConnectable={false}
             nodesDraggable={false} elementsSelectable={false} colorMode="dark" fitView>
             <Background />
             <Controls showInteractive={false} />

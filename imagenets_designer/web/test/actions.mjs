@@ -50,14 +50,26 @@ export async function connect(page, from, to) {
   await page.mouse.up();
 }
 
-// Links as a user does: drag, then see the link drawn before going on.
+// Links as a user does: drag, then see the link drawn before going on; a drag that missed (the
+// canvas still settling after an edit moved a handle) is made again, as a user would.
 export async function link(page, from, to) {
+  const linked = async () => (await linkIds(page)).includes(`${from}->${to}`);
+  for (let attempt = 1; attempt < 3; ++attempt) {
+    await connect(page, from, to);
+    try {
+      await until(`the link ${from} -> ${to}`, linked, 10000);
+      return;
+    } catch {
+      // dragged again below
+    }
+  }
   await connect(page, from, to);
-  await until(`the link ${from} -> ${to}`, async () => (await linkIds(page)).includes(`${from}->${to}`));
+  await until(`the link ${from} -> ${to}`, linked);
 }
 
+// The links' edges (a feedback's dashed edge, `feedback:BLOCK`, is no link).
 export async function linkIds(page) {
-  return page.$$eval('.react-flow__edge', (edges) => edges.map((e) => e.dataset.id).sort());
+  return page.$$eval('.react-flow__edge', (edges) => edges.map((e) => e.dataset.id).filter((id) => !id.startsWith('feedback:')).sort());
 }
 
 export async function select(page, name) {
@@ -96,9 +108,24 @@ export async function message(page) {
   return page.$eval('[data-testid="message"]', (m) => ({ text: m.textContent, error: m.classList.contains('error') }));
 }
 
+// A node beyond the canvas's edge (the fit keeps text readable, so a wide net is wider than the
+// canvas) lies under a side panel: the canvas is zoomed out until the target is what the mouse hits.
 export async function click(page, selector) {
-  const p = await centre(page, selector);
+  let p = await centre(page, selector);
+  for (let i = 0; i < 6 && !(await hits(page, selector, p)); ++i) {
+    const out = await centre(page, '.react-flow__controls-zoomout');
+    await page.mouse.click(out.x, out.y);
+    await new Promise((r) => setTimeout(r, 100));
+    p = await centre(page, selector);
+  }
   await page.mouse.click(p.x, p.y);
+}
+
+async function hits(page, selector, p) {
+  return page.evaluate(({ selector, x, y }) => {
+    const target = document.querySelector(selector), hit = document.elementFromPoint(x, y);
+    return !target || !target.closest('.react-flow__node') || (hit !== null && target.contains(hit));
+  }, { selector, x: p.x, y: p.y });
 }
 
 // Turns the preview box of an output on; resolves when it shows a value. A node can change size
@@ -112,4 +139,51 @@ export async function watch(page, port) {
     return page.waitForSelector(`${button}.on`, { timeout: 2000 }).then(() => true, () => false);
   });
   await page.waitForSelector(`.preview[data-port="${port}"] [data-revision]`, { timeout: LONG });
+}
+
+// Opens a net file through the Open dialog; resolves when the title names it.
+export async function openFile(page, file) {
+  await click(page, '[data-testid="open"]');
+  const field = await page.waitForSelector('[data-testid="file-path"]', { timeout: LONG });
+  await field.evaluate((i) => i.select());
+  await page.keyboard.type(file);
+  await click(page, '[data-testid="file-ok"]');
+  const name = file.split('/').pop();
+  await until(`${name} open`, async () => (await page.$eval('[data-testid="file-name"]', (e) => e.textContent)).startsWith(name));
+}
+
+// Shift + drag a box around every block on the canvas, as a user selects them all.
+export async function boxSelectAll(page) {
+  const boxes = await page.$$eval('.react-flow__node', (ns) => ns.map((n) => {
+    const r = n.getBoundingClientRect();
+    return [r.left, r.top, r.right, r.bottom];
+  }));
+  const [x0, y0] = [Math.min(...boxes.map((b) => b[0])) - 12, Math.min(...boxes.map((b) => b[1])) - 12];
+  const [x1, y1] = [Math.max(...boxes.map((b) => b[2])) + 12, Math.max(...boxes.map((b) => b[3])) + 12];
+  await page.keyboard.down('Shift');
+  await page.mouse.move(x0, y0);
+  await page.mouse.down();
+  await page.mouse.move((x0 + x1) / 2, (y0 + y1) / 2, { steps: 5 });
+  await page.mouse.move(x1, y1, { steps: 5 });
+  await page.mouse.up();
+  await page.keyboard.up('Shift');
+  await until('every block selected', async () => (await page.$$('.react-flow__node:not(.selected)')).length === 0);
+}
+
+// The canvas's zoom (1 = 100 %).
+export async function zoom(page) {
+  return page.$eval('.react-flow__viewport', (v) => new DOMMatrix(getComputedStyle(v).transform).a);
+}
+
+// Drags with the mouse from one page point to another.
+export async function drag(page, from, to) {
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  await page.mouse.move((from.x + to.x) / 2, (from.y + to.y) / 2 + 10, { steps: 6 });
+  await page.mouse.move(to.x, to.y, { steps: 6 });
+  await page.mouse.up();
+}
+
+export async function centreOf(page, selector) {
+  return centre(page, selector);
 }

@@ -81,6 +81,14 @@ export async function startDesigner({ net, roots = [] } = {}) {
   };
 }
 
+// The Designer on a copy of config/nets/NET (stopped when test `t` ends), and a page on it.
+export async function designerOnNetCopy(t, browser, prefix, net) {
+  const config = copyConfig(tempDir(prefix));
+  const designer = await startDesigner({ net: path.join(config, 'nets', net) });
+  t.after(() => designer.stop());
+  return { config, designer, page: await openDesigner(browser, designer.url) };
+}
+
 export async function launchBrowser() {
   return puppeteer.launch({
     executablePath: chromium,
@@ -92,10 +100,10 @@ export async function launchBrowser() {
 }
 
 // A page on the designer that fails the test on any page error; resolves once the net is shown.
-export async function openDesigner(browser, url, beforeLoad = async () => {}) {
+export async function openDesigner(browser, url, beforeLoad = async () => {}, viewport = { width: 1600, height: 1000 }) {
   const page = await browser.newPage();
   await beforeLoad(page);
-  await page.setViewport({ width: 1600, height: 1000 });
+  await page.setViewport(viewport);
   page.errors = [];
   page.logs = [];
   page.on('pageerror', (e) => page.errors.push(e.message));

@@ -27,6 +27,14 @@ template <class M>
 boost::shared_ptr<const M> waitForMessage(const std::string& topic, double timeout,
                                           std::function<bool(const M&)> accept = nullptr);
 
+// Positions of the joints `names` from the sensor_msgs/JointState messages on `topic`, gathered
+// over the messages arriving within `timeout` s (a robot may publish its joint groups in separate
+// messages), from messages stamped at or after `after` only (zero: any). The result lists `names`
+// in that order (velocities too where every message used had them), stamped like the newest
+// message used. Throws BlockError naming the joints not seen and those the topic did carry.
+sensor_msgs::JointStatePtr jointPositions(const std::string& topic, const std::vector<std::string>& names,
+                                          double timeout, const ros::Time& after = ros::Time());
+
 // The process's TF buffer, filled by one tf2_ros listener (own spin thread) started on first use;
 // call ensureRosNode() first. Shared so that every block sees the history since the first lookup.
 tf2_ros::Buffer& tfBuffer();
