@@ -111,9 +111,14 @@ TargetDetection detectCharuco(const cv::Mat& gray, const render::CameraModel& ca
   std::vector<int> ids;
   cv::aruco::interpolateCornersCharuco(ours, our_ids, gray, board, corners, ids, K, D, std::max(1, options.min_markers));
   const std::map<int, Eigen::Vector3d> object = t.corners();
+  // aruco's corner refinement (OpenCV 4.6, CharucoSubpixelParallel) runs cornerSubPix on the point
+  // less (0.5, 0.5) and adds it back: its corners count from a pixel's top-left corner, where the
+  // camera model (and cornerSubPix itself) puts pixel centres at integers. Uncorrected, every
+  // corner is half a pixel off and a pose 0.29 mm (median, A4 board at 0.6 m) instead of 0.07 mm.
+  constexpr double kArucoPixelOrigin = 0.5;
   for (size_t i = 0; i < ids.size(); ++i) {
     out.ids.push_back(ids[i]);
-    out.points.emplace_back(corners[i].x, corners[i].y);
+    out.points.emplace_back(corners[i].x - kArucoPixelOrigin, corners[i].y - kArucoPixelOrigin);
     out.object_points.push_back(object.at(ids[i]));
   }
   out.confidence = std::min(1.0, static_cast<double>(ids.size()) / std::max<size_t>(1, board->chessboardCorners.size()));
