@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
 
 #include "friend_hw_sim/true_robot.h"
 #include "imagenets/package_file.h"
@@ -37,6 +38,10 @@ TEST(TargetCalibration, TheJointMethodFindsTheFixedPointFromTheTargetsCorners) {
   const auto target = imagenets::target::TargetDescription::load(target_file);
   const auto corners = target.corners();
   ASSERT_TRUE(ros::service::waitForService(node + "/calibrate", ros::Duration(60)));
+  // The node may answer before the simulator runs: the first samples would find no joint states
+  // or no camera. Calibrate once it publishes joint states and renders on trigger.
+  ASSERT_TRUE(ros::service::waitForService("/stereo/trigger", ros::Duration(60)));
+  ASSERT_TRUE(ros::topic::waitForMessage<sensor_msgs::JointState>("/joint_states", ros::Duration(60)));
   imagenets_calibration_msgs::Calibrate srv;
   srv.request.redundancy = 5;
   srv.request.method = "joint";
