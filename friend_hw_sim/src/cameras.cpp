@@ -12,6 +12,7 @@
 #include "friend_hw_sim/friend_sim.h"
 #include "imagenets/vision/frames.h"
 #include "imagenets/vision/marker.h"
+#include "imagenets/vision/target.h"
 #include "imagenets/vision/read_camera_info.h"
 #include "imagenets/package_file.h"
 
@@ -226,16 +227,32 @@ CameraSim::Camera CameraSim::makeCamera(ros::NodeHandle nh, const std::string& n
 CameraSim::CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& sim)
     : nh_(nh), pnh_(pnh), sim_(sim), rng_(static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + 101) {
   world_ = loadWorldScene(pnh_.param<std::string>("scene", imagenets::packageFile("friend_hw_sim", "config/scene.yaml")));
-  // The gripper marker as printed (config/markers/gripper.yaml: border, pattern, white margin).
+  // What the gripper carries, as printed: ~target (a target file, config/targets/: the square
+  // marker, AprilTags, a ChArUco board, its frame where the description puts the marker) or else
+  // ~marker (config/markers/gripper.yaml: border, pattern, white margin).
   const auto& d = sim_.nominal().description();
-  const std::string marker_file = pnh_.param<std::string>("marker", imagenets::packageFile("imagenets_vision", "config/markers/gripper.yaml"));
-  const auto marker = imagenets::marker::MarkerDescription::load(marker_file);
-  if (std::abs(marker.size - d.marker_size) > 1e-9) {
-    throw std::runtime_error("marker '" + marker_file + "' is " + std::to_string(marker.size) +
-                             " m but the robot description's arm.marker.size is " + std::to_string(d.marker_size) + " m");
+  const std::string target_file = pnh_.param<std::string>("target", "");
+  if (!target_file.empty()) {
+    const auto target = imagenets::target::TargetDescription::load(target_file);
+    if (target.type == imagenets::target::TargetType::SquareMarker && std::abs(target.size - d.marker_size) > 1e-9) {
+      throw std::runtime_error("target '" + target_file + "' is a " + std::to_string(target.size) +
+                               " m marker but the robot description's arm.marker.size is " + std::to_string(d.marker_size) + " m");
+    }
+    marker_plane_ = target.plane(Eigen::Isometry3d::Identity());
+    marker_size_ = std::max(target.patternWidth(), target.patternHeight());
+    ROS_INFO("friend_sim: the gripper carries %s (%s, %.0f x %.0f mm)", target_file.c_str(), target.typeName().c_str(),
+             1000 * target.patternWidth(), 1000 * target.patternHeight());
+  } else {
+    const std::string marker_file =
+        pnh_.param<std::string>("marker", imagenets::packageFile("imagenets_vision", "config/markers/gripper.yaml"));
+    const auto marker = imagenets::marker::MarkerDescription::load(marker_file);
+    if (std::abs(marker.size - d.marker_size) > 1e-9) {
+      throw std::runtime_error("marker '" + marker_file + "' is " + std::to_string(marker.size) +
+                               " m but the robot description's arm.marker.size is " + std::to_string(d.marker_size) + " m");
+    }
+    marker_plane_ = imagenets::marker::markerPlane(marker, Eigen::Isometry3d::Identity());
+    marker_size_ = marker.size;
   }
-  marker_plane_ = imagenets::marker::markerPlane(marker, Eigen::Isometry3d::Identity());
-  marker_size_ = marker.size;
   const int ss = pnh_.param("camera/supersampling", 2);
   left_ = makeCamera(nh_, "stereo/left", d.left_camera_info, d.left_camera.frame, ss);
   right_ = makeCamera(nh_, "stereo/right", d.right_camera_info, d.right_camera_frame, ss);

@@ -9,6 +9,7 @@
 #include "imagenets/vision/frames.h"
 #include "imagenets/vision/marker_msgs.h"
 #include "imagenets/vision/marker_scene.h"
+#include "imagenets/vision/target.h"
 #include "imagenets/register_block.h"
 #include "camera_ports.h"
 
@@ -23,6 +24,8 @@ class MarkerRenderer : public Block {
     addOutput<sensor_msgs::CameraInfo>("camera_info", "the camera_info, stamped like the image");
     addOutput<geometry_msgs::PoseStamped>("ground_truth", "true marker pose in the camera frame");
     addProperty("marker", "", "square marker description YAML; empty: render AprilTag `apriltag_id`").path();
+    addProperty("target", "", "target file (config/targets/: square marker, AprilTag(s), ChArUco board); "
+                              "rendered instead of `marker` / `apriltag_id` when set").path();
     addProperty<int>("apriltag_id", 0, "tag36h11 id rendered when `marker` is empty").range(0, 586);
     addProperty<double>("apriltag_size", 0.06, "AprilTag black-border edge, metres").range(0.001, 10.0);
     addProperty<double>("distance", 0.6, "camera to marker centre, metres").range(0.01, 100.0);
@@ -47,8 +50,11 @@ class MarkerRenderer : public Block {
     const render::CameraModel camera = inputCameraModel(ctx, "camera_info");
     const std::string marker_path = ctx.property<std::string>("marker");
     render::Plane plane;
+    const std::string target_path = ctx.property<std::string>("target");
     try {
-      if (!marker_path.empty()) {
+      if (!target_path.empty()) {
+        plane = target::TargetDescription::loadCached(target_path)->plane(Eigen::Isometry3d::Identity());
+      } else if (!marker_path.empty()) {
         plane = marker::markerPlane(*marker::MarkerDescription::loadCached(marker_path), Eigen::Isometry3d::Identity());
       } else {
         marker::AprilTagOptions options;
@@ -56,7 +62,7 @@ class MarkerRenderer : public Block {
         plane = marker::aprilTagPlane(options, ctx.property<int>("apriltag_id"), 0.25, Eigen::Isometry3d::Identity());
       }
     } catch (const std::exception& e) {
-      throw BlockError(std::string("property 'marker': ") + e.what());
+      throw BlockError(std::string(target_path.empty() ? "property 'marker': " : "property 'target': ") + e.what());
     }
     const double ink = ctx.property<double>("ink"), paper = ctx.property<double>("paper");
     if (!(ink < paper)) throw BlockError("property 'ink': must be below 'paper'");

@@ -79,7 +79,7 @@ class SquareMarkerDetector : public Block {
     }
     marker::Detection d = marker::detect(gray, binary, camera, *desc, options);
     marker::shiftPoints(d, offset);
-    ctx.output("detection", marker::toMsg(d, desc->name, header));
+    ctx.output("detection", marker::toMsg(d, *desc, header));
     marker::outputConfidenceAndPose(ctx, d, header);
     if (d.found) {
       auto error = boost::make_shared<std_msgs::Float64>();

@@ -233,11 +233,18 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
   };
   std::vector<Use> uses;
   int mismatched = 0;
+  // A detection's points on the target: its own (a target's corners with ids), else the marker's.
+  auto targetPoints = [&](const MarkerObservation& o) -> const std::vector<Eigen::Vector3d>& {
+    return o.object_points.empty() ? marker_points : o.object_points;
+  };
   for (const Sample* s : samples) {
     for (bool right : {false, true}) {
       const MarkerObservation& o = right ? s->right : s->left;
-      if (!o.found || o.reprojection_error > max_reprojection_error || o.points.size() != marker_points.size()) continue;
-      if (rmsMismatch(right ? cameras.right : cameras.left, o, marker_points) > options.max_point_mismatch) {
+      const std::vector<Eigen::Vector3d>& points = targetPoints(o);
+      if (!o.found || o.reprojection_error > max_reprojection_error || o.points.size() != points.size() || points.size() < 4) {
+        continue;
+      }
+      if (rmsMismatch(right ? cameras.right : cameras.left, o, points) > options.max_point_mismatch) {
         ++mismatched;
         continue;
       }
@@ -270,7 +277,7 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
     for (const Use& u : uses) {
       const MarkerObservation& o = u.right ? u.sample->right : u.sample->left;
       auto* f = new DetectionResidual{&model, &layout, u.right ? &cameras.right : &cameras.left, u.sample, u.right,
-                                      marker_points, o.points, start.fixed_point, start.marker_offset, sigma, true,
+                                      targetPoints(o), o.points, start.fixed_point, start.marker_offset, sigma, true,
                                       options.huber_sigmas};
       // Stride 18: FRIEND's 18 parameters in one pass of dual numbers.
       auto* cost = new ceres::DynamicAutoDiffCostFunction<DetectionResidual, 18>(f);
@@ -278,7 +285,7 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
       cost->AddParameterBlock(6);
       if (!arm.empty()) cost->AddParameterBlock(static_cast<int>(arm.size()));
       if (!head.empty()) cost->AddParameterBlock(static_cast<int>(head.size()));
-      cost->SetNumResiduals(static_cast<int>(2 * marker_points.size()));
+      cost->SetNumResiduals(static_cast<int>(2 * o.points.size()));
       data_ids.push_back(problem.AddResidualBlock(cost, nullptr, blocks));
     }
     prior_ids.push_back(problem.AddResidualBlock(
@@ -315,7 +322,8 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
     ceres::CRSMatrix crs;
     problem.Evaluate(eo, nullptr, nullptr, nullptr, &crs);
     jacobian = denseOf(crs);
-    data_rows = static_cast<int>(uses.size() * 2 * marker_points.size());
+    data_rows = 0;
+    for (const Use& u : uses) data_rows += static_cast<int>(2 * (u.right ? u.sample->right : u.sample->left).points.size());
     return true;
   };
   // Pixel residuals of the current parameters (px), to estimate the noise.
@@ -325,8 +333,8 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
     for (const Use& u : uses) {
       const MarkerObservation& o = u.right ? u.sample->right : u.sample->left;
       DetectionResidual f{&model, &layout, u.right ? &cameras.right : &cameras.left, u.sample, u.right,
-                          marker_points, o.points, start.fixed_point, start.marker_offset, 1.0, false, 0.0};
-      std::vector<double> e(2 * marker_points.size());
+                          targetPoints(o), o.points, start.fixed_point, start.marker_offset, 1.0, false, 0.0};
+      std::vector<double> e(2 * o.points.size());
       f(p, e.data());
       r.insert(r.end(), e.begin(), e.end());
     }

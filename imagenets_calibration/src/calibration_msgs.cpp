@@ -21,6 +21,8 @@ MarkerObservation observationOf(const imagenets::MarkerDetection* detection, con
   o.reprojection_error = detection->reprojection_error;
   o.pose = frames::toIsometry(detection->pose, "detection pose");
   for (const auto& p : detection->points) o.points.emplace_back(p.x, p.y);
+  o.point_ids.assign(detection->point_ids.begin(), detection->point_ids.end());
+  for (const auto& p : detection->object_points) o.object_points.emplace_back(p.x, p.y, p.z);
   return o;
 }
 
@@ -32,6 +34,8 @@ imagenets_calibration_msgs::MarkerObservation toMsg(const MarkerObservation& o) 
   m.threshold = o.threshold;
   m.reprojection_error = o.reprojection_error;
   for (const auto& p : o.points) m.points.push_back(frames::toPointMsg(Eigen::Vector3d(p.x(), p.y(), 0)));
+  m.point_ids.assign(o.point_ids.begin(), o.point_ids.end());
+  for (const auto& p : o.object_points) m.object_points.push_back(frames::toPointMsg(p));
   m.reason = o.reason;
   return m;
 }
@@ -44,6 +48,8 @@ MarkerObservation fromMsg(const imagenets_calibration_msgs::MarkerObservation& m
   o.threshold = m.threshold;
   o.reprojection_error = m.reprojection_error;
   for (const auto& p : m.points) o.points.emplace_back(p.x, p.y);
+  o.point_ids.assign(m.point_ids.begin(), m.point_ids.end());
+  for (const auto& p : m.object_points) o.object_points.emplace_back(p.x, p.y, p.z);
   o.reason = m.reason;
   return o;
 }

@@ -24,6 +24,7 @@
 #include "imagenets/net_wide_property.h"
 #include "imagenets/package_file.h"
 #include "robot_description/joint_state.h"
+#include "imagenets/vision/target.h"
 
 namespace imagenets_calibration {
 namespace {
@@ -82,7 +83,9 @@ cv::Mat drawObservation(const sensor_msgs::ImageConstPtr& img, const MarkerObser
   for (size_t k = 0; k < o.points.size(); ++k) {
     const cv::Point2d p(o.points[k].x(), o.points[k].y());
     cv::circle(colour, p, 3 + 2 * w, k < 4 ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 200, 0), w, cv::LINE_AA);
-    if (k < 4) cv::line(colour, p, cv::Point2d(o.points[(k + 1) % 4].x(), o.points[(k + 1) % 4].y()),
+    // The outline of the square marker or of one tag; a grid's or board's corners as dots.
+    const bool outline = o.points.size() == 8 || o.points.size() == 4;
+    if (k < 4 && outline) cv::line(colour, p, cv::Point2d(o.points[(k + 1) % 4].x(), o.points[(k + 1) % 4].y()),
                         cv::Scalar(0, 0, 255), w, cv::LINE_AA);
   }
   char text[160];
@@ -260,6 +263,22 @@ void CalibrationNode::loadNets(const std::string& net, const std::string& replay
     const auto set = imagenets::setPropertyInNetTree(*exec, "description", description,
                                                      [](const imagenets::PropertySpec& p) { return p.isPath(); });
     ROS_DEBUG("%s: description %s set on %zu blocks", exec->net().origin().c_str(), description.c_str(), set.size());
+  }
+  // What the gripper carries, when not the nets' own square marker: a target file (~target,
+  // config/targets/ of imagenets_vision) for every block that reads one; the sample net's detection
+  // (imagenets/TargetDetectionNet) runs the detection net of its kind with it.
+  const std::string target = pnh_.param<std::string>("target", "");
+  if (!target.empty()) {
+    const auto t = imagenets::target::TargetDescription::load(target);  // a bad file: named here
+    const std::string path = boost::filesystem::absolute(target).string();
+    size_t blocks = 0;
+    for (imagenets::Executor* exec : {live_.get(), replay_.get()}) {
+      blocks += imagenets::setPropertyInNetTree(*exec, "target", path,
+                                                [](const imagenets::PropertySpec& p) { return p.isPath(); })
+                    .size();
+    }
+    if (blocks == 0) throw std::runtime_error(net + ": no block of it or its sub-nets takes a target file (~target " + path + ")");
+    ROS_INFO("%s: target %s (%s) set on %zu blocks", net.c_str(), path.c_str(), t.typeName().c_str(), blocks);
   }
 }
 

@@ -59,6 +59,16 @@ void emitObservation(YAML::Emitter& out, const MarkerObservation& o) {
     out << YAML::Key << "points" << YAML::Value << YAML::Flow << YAML::BeginSeq;
     for (const auto& p : o.points) out << YAML::Flow << YAML::BeginSeq << p.x() << p.y() << YAML::EndSeq;
     out << YAML::EndSeq;
+    // A target's corners: their ids and where they are on it (none: the square marker's 8 points).
+    if (!o.point_ids.empty()) {
+      out << YAML::Key << "point_ids" << YAML::Value;
+      emitList(out, o.point_ids);
+    }
+    if (!o.object_points.empty()) {
+      out << YAML::Key << "object_points" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (const auto& p : o.object_points) out << YAML::Flow << YAML::BeginSeq << p.x() << p.y() << p.z() << YAML::EndSeq;
+      out << YAML::EndSeq;
+    }
   } else {
     out << YAML::Key << "reason" << YAML::Value << o.reason;
   }
@@ -186,6 +196,19 @@ struct Reader {
           if (v.size() != 2) throw std::runtime_error("calibration file '" + file + "': '" + w + "points' needs [x, y] pairs");
           obs.points.emplace_back(v[0], v[1]);
         }
+      }
+      if (o["point_ids"]) obs.point_ids = o["point_ids"].as<std::vector<int>>();
+      if (o["object_points"]) {
+        for (const auto& p : o["object_points"]) {
+          const auto v = p.as<std::vector<double>>();
+          if (v.size() != 3) throw std::runtime_error("calibration file '" + file + "': '" + w + "object_points' needs [x, y, z] triples");
+          obs.object_points.emplace_back(v[0], v[1], v[2]);
+        }
+      }
+      if ((!obs.point_ids.empty() && obs.point_ids.size() != obs.points.size()) ||
+          (!obs.object_points.empty() && obs.object_points.size() != obs.points.size())) {
+        throw std::runtime_error("calibration file '" + file + "': '" + w + "point_ids' / 'object_points' do not match its " +
+                                 std::to_string(obs.points.size()) + " points");
       }
     } else if (o["reason"]) {
       obs.reason = o["reason"].as<std::string>();

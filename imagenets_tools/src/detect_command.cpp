@@ -1,8 +1,10 @@
-// `imagenets detect --marker M.yaml --camera C.yaml [--threshold T | --feedback FROM:TO:STEP] IMAGE...`
+// `imagenets detect (--marker M.yaml | --target T.yaml) --camera C.yaml [--threshold T | --feedback FROM:TO:STEP] IMAGE...`
 // Runs the robust marker detection net (config/nets/robust_marker_detection.yaml) on each image,
 // with the threshold feedback the net declares unless --threshold or --feedback replace it, and
-// prints YAML: one entry per image. A bad image gets an `error` entry; the others are still
-// processed; the exit code is then 1.
+// prints YAML: one entry per image. A target file (imagenets_vision/config/targets/) of a square
+// marker does the same with its marker; of AprilTags or a ChArUco board it runs their detection
+// (imagenets_vision/target.h) and prints every corner found with its id. A bad image gets an
+// `error` entry; the others are still processed; the exit code is then 1.
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -13,10 +15,12 @@
 #include <boost/make_shared.hpp>
 #include <cv_bridge/cv_bridge.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <ros/package.h>
 
 #include "imagenets/tool/command.h"
 #include "imagenets/vision/marker.h"
+#include "imagenets/vision/target.h"
 #include "marker_study/marker_net.h"
 #include "imagenets/vision/read_camera_info.h"
 #include "imagenets/package_file.h"
@@ -34,16 +38,45 @@ std::string quoted(const std::string& s) {
   return out + "\"";
 }
 
+void printPoint(std::ostream& out, const cv::Point2d& p) { out << "[" << p.x << ", " << p.y << "]"; }
+
+// One image's target detection: what was found, every corner with its id, the pose.
+void printTargetDetection(std::ostream& out, const target::TargetDescription& t, const target::TargetDetection& d) {
+  out << "  target: " << quoted(t.name) << "\n";
+  out << "  type: " << t.typeName() << "\n";
+  out << "  found: " << (d.found ? "true" : "false") << "\n";
+  out << "  confidence: " << d.confidence << "\n";
+  out << "  tags: " << d.tags << "\n";
+  if (!d.found) {
+    out << "  reason: " << quoted(d.reason) << "\n";
+    return;
+  }
+  out << "  ids: [";
+  for (size_t i = 0; i < d.ids.size(); ++i) out << (i ? ", " : "") << d.ids[i];
+  out << "]\n  points: [";
+  for (size_t i = 0; i < d.points.size(); ++i) {
+    out << (i ? ", " : "");
+    printPoint(out, d.points[i]);
+  }
+  out << "]\n";
+  const Eigen::Quaterniond q(d.pose.rotation());
+  out << "  translation: [" << d.pose.translation().x() << ", " << d.pose.translation().y() << ", "
+      << d.pose.translation().z() << "]\n";
+  out << "  quaternion: [" << q.x() << ", " << q.y() << ", " << q.z() << ", " << q.w() << "]\n";
+  out << "  reprojection_error_px: " << d.reprojection_error << "\n";
+}
+
 std::string defaultNet() { return imagenets::packageFile("imagenets_blocks", "config/nets/robust_marker_detection.yaml"); }
 
 int run(const Args& args) {
-  std::string marker_path, camera_path, net_path;
+  std::string marker_path, target_path, camera_path, net_path;
   marker::ThresholdMode mode;
   bool fixed = false, feedback = false, coarse_to_fine = false;
   std::vector<std::string> images;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--marker") marker_path = flagValue(args, i);
+    else if (a == "--target") target_path = flagValue(args, i);
     else if (a == "--camera") camera_path = flagValue(args, i);
     else if (a == "--net") net_path = flagValue(args, i);
     else if (a == "--threshold") {
@@ -73,7 +106,8 @@ int run(const Args& args) {
   if (coarse_to_fine && !feedback) {
     throw UsageError("--coarse-to-fine orders a --feedback FROM:TO:STEP range (without one the net's own feedback runs)");
   }
-  if (marker_path.empty()) throw UsageError("--marker MARKER.yaml is required");
+  if (!marker_path.empty() && !target_path.empty()) throw UsageError("give --marker or --target, not both");
+  if (marker_path.empty() && target_path.empty()) throw UsageError("--marker MARKER.yaml or --target TARGET.yaml is required");
   if (camera_path.empty()) throw UsageError("--camera CAMERA.yaml is required");
   if (images.empty()) throw UsageError("no IMAGE given");
   if (net_path.empty()) net_path = defaultNet();
@@ -91,14 +125,34 @@ int run(const Args& args) {
     return 1;
   }
   info->header.frame_id = camera_name.empty() ? "camera" : camera_name + "_optical_frame";
-  std::unique_ptr<marker::MarkerDetectionNet> net;
-  try {
-    marker::MarkerDescription::load(marker_path);  // named error for a bad marker file, before any image
-    net.reset(new marker::MarkerDetectionNet(net_path, marker_path, mode, 0));
-  } catch (const std::exception& e) {
-    std::cerr << "imagenets detect: " << e.what() << "\n";
-    return 1;
+  // A target file: named errors before any image; a square marker's goes on as --marker.
+  std::shared_ptr<const target::TargetDescription> target;
+  if (!target_path.empty()) {
+    try {
+      target = target::TargetDescription::loadCached(target_path);
+    } catch (const std::exception& e) {
+      std::cerr << "imagenets detect: --target: " << e.what() << "\n";
+      return 1;
+    }
+    if (target->type == target::TargetType::SquareMarker) {
+      marker_path = target->marker_file;
+      target.reset();
+    } else if (fixed || feedback) {
+      throw UsageError("--threshold / --feedback belong to a square marker; " + target_path + " is a " +
+                       target->typeName() + " target (found without a threshold)");
+    }
   }
+  std::unique_ptr<marker::MarkerDetectionNet> net;
+  if (!target) {
+    try {
+      marker::MarkerDescription::load(marker_path);  // named error for a bad marker file, before any image
+      net.reset(new marker::MarkerDetectionNet(net_path, marker_path, mode, 0));
+    } catch (const std::exception& e) {
+      std::cerr << "imagenets detect: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  const render::CameraModel camera = render::CameraModel::fromCameraInfo(*info);
 
   int errors = 0;
   std::ostringstream out;
@@ -112,6 +166,20 @@ int run(const Args& args) {
     else if (image.cols != static_cast<int>(info->width) || image.rows != static_cast<int>(info->height)) {
       error = "image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) + " but camera '" +
               camera_path + "' is " + std::to_string(info->width) + "x" + std::to_string(info->height);
+    }
+    if (target && error.empty()) {
+      cv::Mat gray;
+      cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+      target::TargetDetection d;
+      try {
+        d = target::detectTarget(gray, camera, *target);
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+      if (error.empty()) {
+        printTargetDetection(out, *target, d);
+        continue;
+      }
     }
     marker::MarkerDetectionNet::Result r;
     if (error.empty()) {
@@ -146,10 +214,11 @@ int run(const Args& args) {
 }  // namespace
 
 IMAGENETS_TOOL_COMMAND(detect, "detect",
-                       "detect --marker MARKER.yaml --camera CAMERA.yaml [--threshold T | --feedback FROM:TO:STEP] "
-                       "[--coarse-to-fine] [--net NET.yaml] IMAGE...",
-                       "find a square marker in images (robust detection net, its threshold feedback unless "
-                       "--threshold/--feedback replace it); print YAML: points, confidence, pose",
+                       "detect (--marker MARKER.yaml | --target TARGET.yaml) --camera CAMERA.yaml "
+                       "[--threshold T | --feedback FROM:TO:STEP] [--coarse-to-fine] [--net NET.yaml] IMAGE...",
+                       "find a square marker (robust detection net, its threshold feedback unless "
+                       "--threshold/--feedback replace it) or a target (AprilTags, ChArUco: corners with ids) in "
+                       "images; print YAML: points, confidence, pose",
                        run);
 
 }  // namespace tool

@@ -54,6 +54,9 @@ int run(const Args& args) {
     else if (a == "--net") config.net = flagValue(args, i);
     else if (a == "--calibration-net") config.calibration_net = flagValue(args, i);
     else if (a == "--decoys") config.decoys = true;
+    else if (a == "--no-targets") config.tag_target.clear(), config.board_target.clear();
+    else if (a == "--tag-target") config.tag_target = flagValue(args, i);
+    else if (a == "--board-target") config.board_target = flagValue(args, i);
     else if (a == "--output-dir" || a == "-o") out_dir = flagValue(args, i);
     else if (a == "--quick") marker::makeQuick(&config);  // flags after it still change the grid
     else if (a == "--pan") parseRange(flagValue(args, i), &config.pan_from, &config.pan_to, &config.pan_step);
@@ -128,6 +131,7 @@ int run(const Args& args) {
 IMAGENETS_TOOL_COMMAND(marker_study, "marker-study",
                        "marker-study [--output-dir DIR] [--conditions paper|hard|all|NAME,...] [--quick] "
                        "[--marker M.yaml] [--camera C.yaml] [--net NET.yaml] [--calibration-net NET.yaml] [--decoys] "
+                       "[--tag-target T.yaml] [--board-target T.yaml | --no-targets] "
                        "[--pan 0:350:10] [--tilt 0:70:10] "
                        "[--threshold 40] [--threads N] [--supersampling 4] [--seed N] [--scale-mm S] "
                        "[--from-csv STUDY.csv]",

@@ -1,5 +1,6 @@
 // The `imagenets` command line tool, run as a user runs it.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -141,6 +142,46 @@ TEST(Tool, DetectByDefaultFindsTheMarkerInADimSceneThatThePapersRangeMisses) {
   r = tool(common + "--coarse-to-fine " + image);
   EXPECT_EQ(r.status, 2) << r.output;
   expectContains(r.output, "--coarse-to-fine orders a --feedback FROM:TO:STEP range");
+}
+
+TEST(Tool, DetectATargetFilePrintsItsCornersWithIdsAndThePose) {
+  const std::string dir = temp("target_scene");
+  const std::string targets = "$(rospack find imagenets_vision)/config/targets/";
+  Result r = tool("run config/nets/marker_image_generation.yaml --quiet --set render.target=" + targets +
+                  "aprilgrid_36h11_4x3.yaml --set render.distance=0.45 --set render.tilt=20 --set render.supersampling=2 "
+                  "--output-dir " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string image = dir + "/render.image.png";
+  const std::string camera = " --camera $(rospack find imagenets_vision)/config/cameras/stereo_left.yaml ";
+  r = tool("detect --target " + targets + "aprilgrid_36h11_4x3.yaml" + camera + image, true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "  type: apriltag\n  found: true\n");
+  expectContains(r.output, "  tags: 12\n");
+  expectContains(r.output, "  ids: [0, 1, 2, 3, 4, 5, 6, 7, ");
+  expectContains(r.output, "translation: [");
+  // The true pose: 0.45 m in front of the camera.
+  const size_t at = r.output.find("translation: [");
+  ASSERT_NE(at, std::string::npos);
+  std::stringstream t(r.output.substr(at + 14));
+  double x, y, z;
+  char comma;
+  t >> x >> comma >> y >> comma >> z;
+  EXPECT_NEAR(std::sqrt(x * x + y * y + z * z), 0.45, 0.001) << r.output;
+
+  // A square marker's target file works as --marker did.
+  r = tool("detect --target " + targets + "gripper_square_marker.yaml" + camera + image, true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "found: false");
+
+  // A bad target file: its name and key, before any image.
+  const std::string bad = temp("bad_target.yaml");
+  std::ofstream(bad) << "type: apriltag\nfamily: tag36h11\nid: 600\nsize: 0.06\n";
+  r = tool("detect --target " + bad + camera + image);
+  EXPECT_EQ(r.status, 1) << r.output;
+  expectContains(r.output, bad + ": 'id': 600 out of range: family tag36h11 has ids 0..586");
+  r = tool("detect --target " + targets + "apriltag_36h11_60mm.yaml --threshold 40" + camera + image);
+  EXPECT_EQ(r.status, 2) << r.output;
+  expectContains(r.output, "--threshold / --feedback belong to a square marker");
 }
 
 TEST(Tool, MarkerStudyWithDecoysCountsFalsePositives) {

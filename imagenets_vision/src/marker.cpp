@@ -555,6 +555,18 @@ Eigen::Isometry3d toIsometry(const cv::Vec3d& rvec, const cv::Vec3d& tvec) {
 
 }  // namespace
 
+bool refineSquareEdges(const cv::Mat& gray, const render::CameraModel& camera, const std::vector<cv::Point2d>& quad_px,
+                       int passes, std::vector<cv::Point2d>* refined_px) {
+  if (quad_px.size() != 4) return false;
+  std::vector<cv::Point2d> px = quad_px, norm;
+  for (int pass = 0; pass < passes; ++pass) {
+    if (!refineQuad(gray, camera, px, pass == 0 ? 4.0 : 2.5, &norm)) return false;
+    px = distort(norm, camera);
+  }
+  *refined_px = px;
+  return true;
+}
+
 Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::CameraModel& camera,
                  const MarkerDescription& marker, const DetectorOptions& options) {
   if (gray.empty() || gray.type() != CV_8UC1) throw std::invalid_argument("gray image must be a non-empty mono8 image");

@@ -1,6 +1,7 @@
 // The joint calibration fitted at pixel level: a bundle adjustment (Ceres Solver) over the fixed
-// point, the marker offset and the identifiable joint zero offsets, whose residuals are the
-// marker's 8 defined points projected through the arm, the head chain and the stereo camera
+// point, the marker offset (TCP -> target frame) and the identifiable joint zero offsets, whose
+// residuals are the target's points (the square marker's 8 defined points, or the corners of a
+// printed target with their ids) projected through the arm, the head chain and the stereo camera
 // models (with their distortion) minus the detected points, in both images, under a robust
 // (Huber) loss. Its covariance at the solution is the result's uncertainty. Plain Eigen types
 // here: Ceres stays inside bundle_adjustment.cpp.
@@ -73,7 +74,9 @@ struct BundleAdjustment {
 
 // Starts from `start` (the joint method's solution: fixed point, marker offset, joint offsets) and
 // fits the samples given (the joint method's used ones); a detection is used when `usable` says so
-// and its points fit its pose (options.max_point_mismatch).
+// and its points fit its pose (options.max_point_mismatch). Each detection's points are where its
+// `object_points` say on the target (a target's corners with ids, imagenets_vision/target.h);
+// detections without them are the square marker's defined points, `marker_points`.
 BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& cameras,
                               const std::vector<Eigen::Vector3d>& marker_points, const std::vector<const Sample*>& samples,
                               const Result& start, double max_reprojection_error,

@@ -27,14 +27,18 @@ namespace imagenets_calibration {
 
 using robot_description::RobotModel;
 
-// One marker detection in one camera image (the robust detection's result).
+// One marker (or target) detection in one camera image (the robust detection's result).
 struct MarkerObservation {
   bool found = false;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // T_camera_marker
   double confidence = 0.0;
   double threshold = 0.0;            // binarisation threshold the feedback chose
   double reprojection_error = 0.0;   // RMS pixels
-  std::vector<Eigen::Vector2d> points;  // the 8 defined points (distorted pixels) when found
+  std::vector<Eigen::Vector2d> points;  // the points found (distorted pixels): the square marker's 8
+                                        // defined points, or a target's corners (imagenets_vision/target.h)
+  std::vector<int> point_ids;           // their ids; empty: the square marker's 0..7
+  std::vector<Eigen::Vector3d> object_points;  // each point on the target, its frame (m); empty: the
+                                               // square marker's defined points of the description's size
   std::string reason;                // why not found
 };
 

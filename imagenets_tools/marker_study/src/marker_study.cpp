@@ -24,6 +24,7 @@
 #include "imagenets/vision/marker_msgs.h"
 #include "marker_study/marker_net.h"
 #include "imagenets/vision/marker_scene.h"
+#include "imagenets/vision/target.h"
 #include "imagenets/vision/read_camera_info.h"
 #include "imagenets/executor.h"
 #include "imagenets/vision/frames.h"
@@ -181,6 +182,9 @@ struct StudyScene {
   std::shared_ptr<const render::Renderer> renderer;
   AprilTagOptions april;
   render::Plane square, tag;
+  // The targets people print (empty when not studied), the board's plane and its decoy's.
+  std::shared_ptr<const target::TargetDescription> tag_target, board_target, board_decoy;
+  render::Plane board, decoy_board;
 
   explicit StudyScene(const StudyConfig& config)
       : marker(MarkerDescription::load(config.marker)),
@@ -194,6 +198,29 @@ struct StudyScene {
     april.id = 0;
     tag = aprilTagPlane(april, 0, marker.margin, Eigen::Isometry3d::Identity());
     applyPrintReflectance(&tag);
+    if (!config.tag_target.empty()) {
+      tag_target = std::make_shared<const target::TargetDescription>(target::TargetDescription::load(config.tag_target));
+      if (tag_target->type != target::TargetType::AprilTag || tag_target->family != april.family ||
+          tag_target->id != 0 || tag_target->rows * tag_target->cols != 1 || std::abs(tag_target->size - april.size) > 1e-9) {
+        throw std::runtime_error(config.tag_target + ": the study's AprilTag row needs one " + april.family +
+                                 " tag of id 0 and the marker's size, " + std::to_string(april.size) + " m");
+      }
+    }
+    if (!config.board_target.empty()) {
+      board_target = std::make_shared<const target::TargetDescription>(target::TargetDescription::load(config.board_target));
+      if (board_target->type != target::TargetType::Charuco) {
+        throw std::runtime_error(config.board_target + ": the study's board row needs a charuco target, not " +
+                                 board_target->typeName());
+      }
+      board = board_target->plane(Eigen::Isometry3d::Identity());
+      applyPrintReflectance(&board);
+      // The decoy: the same board with the markers of another dictionary.
+      target::TargetDescription other = *board_target;
+      other.dictionary = other.dictionary.rfind("DICT_4X4", 0) == 0 ? "DICT_5X5_1000" : "DICT_4X4_1000";
+      board_decoy = std::make_shared<const target::TargetDescription>(other);
+      decoy_board = board_decoy->plane(Eigen::Isometry3d::Identity());
+      applyPrintReflectance(&decoy_board);
+    }
   }
 };
 
@@ -235,7 +262,10 @@ class ViewMeasurement {
     settings.seed = v.seed;
     std::vector<StudyRow> rows;
     const cv::Mat square_image = renderView(*scene_.renderer, scene_.square, settings, &truth_);
-    measureRendering(v, square_image, renderView(*scene_.renderer, scene_.tag, settings, nullptr), false, &rows);
+    const cv::Mat board_image =
+        scene_.board_target ? renderView(*scene_.renderer, scene_.board, settings, nullptr) : cv::Mat();
+    measureRendering(v, square_image, renderView(*scene_.renderer, scene_.tag, settings, nullptr), board_image, false,
+                     &rows);
     if (config_.decoys) {
       std::mt19937_64 decoy_rng(v.seed ^ 0x5eedDec0ull);
       render::Plane decoy_square =
@@ -246,15 +276,17 @@ class ViewMeasurement {
                                               scene_.marker.margin, Eigen::Isometry3d::Identity());
       applyPrintReflectance(&decoy_tag);
       measureRendering(v, renderView(*scene_.renderer, decoy_square, settings, nullptr),
-                       renderView(*scene_.renderer, decoy_tag, settings, nullptr), true, &rows);
+                       renderView(*scene_.renderer, decoy_tag, settings, nullptr),
+                       scene_.board_target ? renderView(*scene_.renderer, scene_.decoy_board, settings, nullptr) : cv::Mat(),
+                       true, &rows);
     }
     return rows;
   }
 
  private:
   // Every method on one rendering of the view (of the marker, or of a decoy in its place).
-  void measureRendering(const View& v, const cv::Mat& square_view, const cv::Mat& tag_view, bool decoy,
-                        std::vector<StudyRow>* rows) {
+  void measureRendering(const View& v, const cv::Mat& square_view, const cv::Mat& tag_view, const cv::Mat& board_view,
+                        bool decoy, std::vector<StudyRow>* rows) {
     std_msgs::Header header;
     header.frame_id = scene_.info->header.frame_id;
     const sensor_msgs::ImageConstPtr msg = cv_bridge::CvImage(header, "mono8", square_view).toImageMsg();
@@ -278,6 +310,19 @@ class ViewMeasurement {
     r.found = d.found;
     if (d.found) score(&r, d.pose);
     rows->push_back(r);
+    // The targets people print: the same tag view through our AprilTag target detection, and the
+    // ChArUco board's view.
+    if (scene_.tag_target) rows->push_back(runTarget(row(v, "apriltag_target", decoy), *scene_.tag_target, tag_view));
+    if (scene_.board_target) rows->push_back(runTarget(row(v, "charuco", decoy), *scene_.board_target, board_view));
+  }
+
+  StudyRow runTarget(StudyRow r, const target::TargetDescription& t, const cv::Mat& view) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const target::TargetDetection d = target::detectTarget(view, scene_.camera, t);
+    r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    r.found = d.found;
+    if (d.found) score(&r, d.pose);
+    return r;
   }
 
   // The calibration's detection net, told where the marker truly is (the study measures the

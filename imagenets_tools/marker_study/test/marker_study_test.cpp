@@ -30,9 +30,9 @@ TEST(MarkerStudy, ReducedStudyMeetsTheAccuracyTargets) {
     last = done;
   });
   EXPECT_EQ(last, 24);
-  ASSERT_EQ(rows.size(), 24u * 4);  // fixed40, detect, calibration, apriltag
+  ASSERT_EQ(rows.size(), 24u * 6);  // fixed40, detect, calibration, apriltag, apriltag_target, charuco
   const auto summary = summarize(rows);
-  ASSERT_EQ(summary.size(), 8u);  // 4 methods x 2 conditions
+  ASSERT_EQ(summary.size(), 12u);  // 6 methods x 2 conditions
   for (const auto& condition : {"even", "varying"}) {
     for (const auto& method : {"detect", "calibration"}) {
       const StudySummaryRow& ours = summaryOf(summary, condition, method);
@@ -45,7 +45,7 @@ TEST(MarkerStudy, ReducedStudyMeetsTheAccuracyTargets) {
     }
   }
   const std::string csv = toCsv(rows);
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 96);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 144);
   const auto back = fromCsv(csv);
   ASSERT_EQ(back.size(), rows.size());
   EXPECT_EQ(back[5].condition, rows[5].condition);
@@ -60,7 +60,7 @@ TEST(MarkerStudy, HarderConditionsMeetTheTargetsAgainstAprilTag) {
   config.conditions = selectConditions("hard");
   config.threads = 2;
   const auto rows = runStudy(config);
-  ASSERT_EQ(rows.size(), config.conditions.size() * 12 * 4);
+  ASSERT_EQ(rows.size(), config.conditions.size() * 12 * 6);
   // The views really are drawn within each condition's ranges.
   for (const auto& r : rows) {
     const StudyCondition& c = selectConditions(r.condition).front();
@@ -110,10 +110,10 @@ TEST(MarkerStudy, DecoysCountAsFalsePositivesNotAsViews) {
   config.threads = 2;
   config.decoys = true;
   const auto rows = runStudy(config);
-  ASSERT_EQ(rows.size(), 12u * 4 * 2);  // every method on the view and on its decoy
-  EXPECT_EQ(std::count_if(rows.begin(), rows.end(), [](const StudyRow& r) { return r.decoy; }), 12 * 4);
+  ASSERT_EQ(rows.size(), 12u * 6 * 2);  // every method on the view and on its decoy
+  EXPECT_EQ(std::count_if(rows.begin(), rows.end(), [](const StudyRow& r) { return r.decoy; }), 12 * 6);
   const auto summary = summarize(rows);
-  for (const auto& method : {"detect", "calibration", "apriltag"}) {
+  for (const auto& method : {"detect", "calibration", "apriltag", "apriltag_target", "charuco"}) {
     const StudySummaryRow& s = summaryOf(summary, "combined", method);
     EXPECT_EQ(s.images, 12) << method;
     EXPECT_EQ(s.decoys, 12) << method;

@@ -15,7 +15,11 @@
 //
 // With `decoys`, every view is rendered a second time with a decoy in the marker's place: the same
 // black-bordered square with another, random 6 x 6 pattern (for libapriltag, a tag36h11 of another
-// id). A detection there is a false positive; it measures what a lower confidence limit costs.
+// id; for the ChArUco board, the same board of another dictionary). A detection there is a false
+// positive; it measures what a lower confidence limit costs.
+//
+// The targets people print come as rows too (StudyConfig::tag_target, board_target): the same
+// AprilTag view detected by our AprilTag target detection, and a ChArUco board of the marker's size.
 #pragma once
 
 #include <functional>
@@ -56,6 +60,12 @@ struct StudyConfig {
   int threads = 0;  // parallel images; 0 = hardware threads
   unsigned seed = 2012;
   bool decoys = false;  // also run every method on a decoy of each view (false positives)
+  // The targets people print, as rows beside ours (target.h): the AprilTag of the `apriltag` row
+  // detected by our AprilTag target detection (`apriltag_target`: libapriltag, its squares located
+  // again by our edge fit, the pose from the corners), and a ChArUco board of the marker's size in
+  // the marker's place (`charuco`). Empty: that row is not run.
+  std::string tag_target = imagenets::packageFile("imagenets_vision", "config/targets/apriltag_36h11_60mm.yaml");
+  std::string board_target = imagenets::packageFile("imagenets_vision", "config/targets/charuco_4x4_60mm.yaml");
 };
 
 // A bounded run for tests and a first look: 12 views per condition (4 pans x 3 tilts up to 70 deg),
@@ -66,7 +76,7 @@ struct StudyRow {
   double pan = 0, tilt = 0;  // degrees
   std::string condition;
   double distance = 0.6, blur = 0.7, noise = 2, illumination = 1, background = 0.5;  // as rendered
-  std::string method;        // fixed40 | detect | calibration | apriltag
+  std::string method;        // fixed40 | detect | calibration | apriltag | apriltag_target | charuco
   bool found = false;
   double position_error_mm = 0, orientation_error_deg = 0;
   double threshold = 0;      // NaN for apriltag / not found

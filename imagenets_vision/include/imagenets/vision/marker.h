@@ -98,6 +98,13 @@ struct Detection {
 Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::CameraModel& camera,
                  const MarkerDescription& marker, const DetectorOptions& options = DetectorOptions());
 
+// Locates the 4 edges of a dark square on a bright surround (a square marker's or an AprilTag's
+// black border) on the gray image, as detect() does: mid-level crossings along each edge,
+// undistorted, a line fitted to each, corners intersected; `passes` times. `quad_px`: rough corners
+// (distorted pixels, in order around the square). False if an edge could not be located.
+bool refineSquareEdges(const cv::Mat& gray, const render::CameraModel& camera, const std::vector<cv::Point2d>& quad_px,
+                       int passes, std::vector<cv::Point2d>* refined_px);
+
 // Angle (radians) of the rotation between two poses and the distance between their origins.
 double rotationAngle(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
 

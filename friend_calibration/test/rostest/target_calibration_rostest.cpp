@@ -1,0 +1,130 @@
+// rostest: the simulated FRIEND carries a printed target (a target file: an AprilTag, a grid of
+// them, a ChArUco board) instead of the square marker; the calibration node, given the same file,
+// measures every sample with the target's detection net (its sample net's
+// imagenets/TargetDetectionNet) and finds the true fixed point from the target's corners at pixel
+// level. One program for every target: its .test file says which (~target), which node calibrates
+// (~node) and how many corners one detection must give at least (~min_points). With
+// ~bad_target_node, a node given a bad target file must name it in every answer.
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+
+#include "friend_hw_sim/true_robot.h"
+#include "imagenets/package_file.h"
+#include "imagenets/vision/frames.h"
+#include "imagenets/vision/target.h"
+#include "imagenets_calibration/calibration.h"
+#include "imagenets_calibration/storage.h"
+#include "imagenets_calibration_msgs/Calibrate.h"
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+// The accuracy one calibration must reach (joint method, redundancy 5), as with the square marker.
+constexpr double kTargetMm = 0.5, kTargetDeg = 0.05;
+
+std::string param(const std::string& name) {
+  std::string value;
+  EXPECT_TRUE(ros::NodeHandle("~").getParam(name, value)) << "the test's ~" << name << " is not set";
+  return value;
+}
+
+TEST(TargetCalibration, TheJointMethodFindsTheFixedPointFromTheTargetsCorners) {
+  const std::string node = param("node"), target_file = param("target");
+  const int min_points = ros::NodeHandle("~").param("min_points", 4);
+  const auto target = imagenets::target::TargetDescription::load(target_file);
+  const auto corners = target.corners();
+  ASSERT_TRUE(ros::service::waitForService(node + "/calibrate", ros::Duration(60)));
+  // The node may answer before the simulator runs: the first samples would find no joint states
+  // or no camera. Calibrate once it publishes joint states and renders on trigger.
+  ASSERT_TRUE(ros::service::waitForService("/stereo/trigger", ros::Duration(60)));
+  ASSERT_TRUE(ros::topic::waitForMessage<sensor_msgs::JointState>("/joint_states", ros::Duration(60)));
+  imagenets_calibration_msgs::Calibrate srv;
+  srv.request.redundancy = 5;
+  srv.request.method = "joint";
+  ASSERT_TRUE(ros::service::call(node + "/calibrate", srv));
+  const auto& res = srv.response;
+  ASSERT_TRUE(res.success) << res.message;
+  EXPECT_EQ(res.samples_used + res.samples_rejected, 10);
+  EXPECT_GE(res.samples_used, 9) << res.message;
+  EXPECT_TRUE(res.unobservable.empty()) << res.message;
+  EXPECT_NE(res.message.find("pixel-level bundle adjustment"), std::string::npos) << res.message;
+
+  // Every sample was measured on the target: corners with the target's ids, each at its point on
+  // the print (the square marker's observations have neither).
+  const auto stored = imagenets_calibration::loadCalibration(res.file);
+  int observations = 0;
+  size_t fewest = corners.size(), most = 0;
+  for (const auto& s : stored.result.samples) {
+    for (const auto* o : {&s.left, &s.right}) {
+      if (!o->found) continue;
+      ++observations;
+      ASSERT_EQ(o->point_ids.size(), o->points.size());
+      ASSERT_EQ(o->object_points.size(), o->points.size());
+      fewest = std::min(fewest, o->points.size());
+      most = std::max(most, o->points.size());
+      for (size_t k = 0; k < o->point_ids.size(); ++k) {
+        const auto c = corners.find(o->point_ids[k]);
+        ASSERT_NE(c, corners.end()) << "corner id " << o->point_ids[k] << " is not one of " << target_file << "'s";
+        EXPECT_LT((o->object_points[k] - c->second).norm(), 1e-9) << "corner " << c->first;
+      }
+    }
+  }
+  EXPECT_GE(observations, 18);
+  EXPECT_GE(static_cast<int>(fewest), min_points);
+
+  // Against the simulator's truth (true_error.yaml): the effective fixed point (pan offset folded
+  // in) and the identifiable one (arm joint 1's too), as the square marker's rostests measure it.
+  const robot_description::RobotModel nominal(
+      robot_description::loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml")));
+  std::string error_file;
+  ASSERT_TRUE(ros::param::get("/friend_sim/true_error", error_file));
+  const auto truth = friend_hw_sim::loadTrueError(error_file, nominal.description(), -1);
+  const Eigen::Isometry3d x = imagenets::frames::toIsometry(res.fixed_point.transform, "fixed point");
+  const Eigen::Isometry3d effective = friend_hw_sim::effectiveHeadBase(nominal.description(), truth);
+  const Eigen::Isometry3d identifiable = friend_hw_sim::identifiableHeadBase(nominal.description(), truth);
+  const double eff_mm = 1000 * (x.translation() - effective.translation()).norm();
+  const double eff_deg = imagenets_calibration::angleBetween(x, effective) / kDeg;
+  const double id_mm = 1000 * (x.translation() - identifiable.translation()).norm();
+  const double id_deg = imagenets_calibration::angleBetween(x, identifiable) / kDeg;
+  const auto& c = res.fixed_point_covariance;
+  const double bound_mm = 3000 * std::sqrt(c[0] + c[7] + c[14]), bound_deg = 3 * std::sqrt(c[21] + c[28] + c[35]) / kDeg;
+  std::printf("%s (%s) on the gripper: error vs effective fixed point %.3f mm / %.4f deg, vs identifiable %.3f mm / "
+              "%.4f deg; reported 3 sigma %.3f mm / %.4f deg; %d of %d samples used, %zu to %zu corners per "
+              "detection; %.3f s compute, %.2f s total\n",
+              target.name.c_str(), target.typeName().c_str(), eff_mm, eff_deg, id_mm, id_deg, bound_mm, bound_deg,
+              res.samples_used, res.samples_used + res.samples_rejected, fewest, most, res.compute_time,
+              res.total_time);
+  EXPECT_LT(id_mm, kTargetMm);
+  EXPECT_LT(id_deg, kTargetDeg);
+  EXPECT_LT(eff_mm, kTargetMm);
+  EXPECT_LT(eff_deg, 2 * kTargetDeg);  // arm joint 1's offset, which no image of the arm's target sees
+  // The identifiable truth inside the reported 3-sigma bounds, in translation and in rotation.
+  EXPECT_LT(id_mm, bound_mm);
+  EXPECT_LT(id_deg, bound_deg);
+}
+
+TEST(TargetCalibration, ABadTargetFileIsNamedInTheAnswer) {
+  std::string node, expected;
+  if (!ros::NodeHandle("~").getParam("bad_target_node", node)) GTEST_SKIP() << "no ~bad_target_node in this .test";
+  ASSERT_TRUE(ros::NodeHandle("~").getParam("bad_target_message", expected));
+  ASSERT_TRUE(ros::service::waitForService(node + "/calibrate", ros::Duration(60)));
+  imagenets_calibration_msgs::Calibrate srv;
+  srv.request.redundancy = 3;
+  ASSERT_TRUE(ros::service::call(node + "/calibrate", srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find(expected), std::string::npos) << srv.response.message;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "target_calibration_rostest");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
