@@ -6,7 +6,7 @@
 // with the block and must offer the same input ports; their outputs (the target net's a subset of
 // the marker net's) are this block's. The target file is handed down: `target` to every block of
 // the target net that has that property, the square marker's `marker` file to every block of the
-// marker net that has that one. Like imagenets/Executor with max_failures, a detection net that
+// marker net that has that one. Like imagenets/SubNet with max_failures, a detection net that
 // fails (nothing found) gives the output `failure` and leaves this block ok: not finding the target
 // is a result.
 #include <mutex>
