@@ -47,6 +47,8 @@ async function readPixel(page, x, y) {
 
 // Closes the dialog or the data window (Escape, as a user does).
 async function closeDialog(page) {
+  // Escape in a property field belongs to the field (the data window stays open), as for a user.
+  await page.evaluate(() => document.activeElement && document.activeElement.blur());
   await page.keyboard.press('Escape');
   await until('the dialog to close', async () => !(await page.$('.modal, .floating-window')));
 }
