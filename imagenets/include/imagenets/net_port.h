@@ -6,9 +6,11 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace imagenets {
 
+class Net;
 class PortType;
 
 class NetPort {
@@ -25,5 +27,11 @@ class NetPort {
 
 // The port type a net port's `type` property names; throws PropertyError listing the known types.
 const PortType& netPortType(const std::string& name);
+
+// The node of `net` that is its port `name` (outer name) of `direction`, or -1: how a host finds
+// what a net declares (e.g. its output `result`) without knowing its blocks.
+int findNetPort(const Net& net, NetPort::Direction direction, const std::string& name);
+// The outer names of the net's ports of `direction`, in the net's order (for messages).
+std::vector<std::string> netPortNames(const Net& net, NetPort::Direction direction);
 
 }  // namespace imagenets

@@ -6,7 +6,9 @@
 // through imagenets::Executor, loaded once; a replay runs the same net with the replay sample net
 // (calibration_sample_replay.yaml: sample k of a saved file) in place of the acquisition. The
 // node adds the ROS interface: service, action (feedback and cancel from the executor's run
-// events and cancel), storage, tf2, the detection images and rviz markers.
+// events and cancel), storage and the recording; what it shows (tf2, the detection images, rviz
+// markers, pictures, the URDF) is CalibrationPublisher's. It reads of its net only what
+// calibration_net_interface.h lists, so a net of one's own (~net) works when it declares that.
 //
 // Interfaces (in the node's private namespace, e.g. /calibration/...):
 //   ~calibrate          service imagenets_calibration_msgs/Calibrate
@@ -17,8 +19,9 @@
 //                       pth_fixed_point_nominal; tf: pth_fixed_point -> calibrated stereo optical
 //                       frames at the current pan/tilt (paper 4.3: extrinsics from TF)
 //   ~markers            visualization_msgs/MarkerArray: marker poses of all samples (latched)
-//   ~detections/{left,right}/image   bgr8, the detected marker points drawn, per sample as it is
-//                       measured (latched), with ~detections/{left,right}/camera_info beside it
+//   ~detections/<camera>/image   bgr8, the detected marker points drawn, per sample as it is
+//                       measured (latched), with ~detections/<camera>/camera_info beside it; the
+//                       cameras are the sample net's `<camera>_image` outputs (left, right)
 // Parameters (private): net (the calibration net file), replay_net (the sample net of replays),
 //   description, marker, calibration_file, redundancy (5), method (joint), poses_per_loop (joint
 //   method, 2), max_poses (with an uncertainty target and no request max_poses: at most this many
@@ -40,24 +43,21 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <vector>
 
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
-#include <sensor_msgs/CameraInfo.h>
-#include <sensor_msgs/Image.h>
-#include <sensor_msgs/JointState.h>
-#include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_msgs/TFMessage.h>
-#include <tf2_ros/transform_broadcaster.h>
 
+#include "imagenets/executor.h"
+#include "imagenets/vision/marker.h"
 #include "imagenets_calibration/bag_recorder.h"
 #include "imagenets_calibration/calibration.h"
-#include "imagenets/vision/marker.h"
+#include "imagenets_calibration/calibration_net_interface.h"
+#include "imagenets_calibration/calibration_publisher.h"
+#include "imagenets_calibration/calibration_run_watch.h"
 #include "imagenets_calibration/storage.h"
 #include "imagenets_calibration_msgs/Calibrate.h"
 #include "imagenets_calibration_msgs/CalibrateAction.h"
-#include "imagenets/executor.h"
 
 namespace imagenets_calibration {
 
@@ -66,45 +66,62 @@ class CalibrationNode {
   CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh);
 
   // Feedback of one run (sample k of N, stage; the bounds reached after a pose added for a target).
-  using Progress = std::function<void(const imagenets_calibration_msgs::CalibrateFeedback&)>;
+  using Progress = CalibrationRunWatch::Progress;
   // One calibration (robot or replay). Never throws: failures come back with success = false.
   imagenets_calibration_msgs::Calibrate::Response run(const imagenets_calibration_msgs::Calibrate::Request& req, const Progress& progress);
   // Stops the running calibration (thread-safe; a no-op when none runs).
   void cancel();
 
  private:
-  struct StereoPair {
-    sensor_msgs::ImageConstPtr left, right;
-    sensor_msgs::CameraInfoConstPtr left_info, right_info;
+  using Request = imagenets_calibration_msgs::Calibrate::Request;
+  using Response = imagenets_calibration_msgs::Calibrate::Response;
+  // How many poses a request takes: `requested` in any case, `total` at most (with a target).
+  struct PoseCounts {
+    int requested = 0, max_poses = 0, total = 0;
+  };
+  // What one run of the net gave.
+  struct NetRun {
+    Result result;
+    CalibrationRunWatch::DetectionTime detection_time;
+    CameraImages last_images;  // of the last sample
   };
 
-  bool onService(imagenets_calibration_msgs::Calibrate::Request& req, imagenets_calibration_msgs::Calibrate::Response& res);
+  // ---- construction, in this order
+  void readParameters();
+  // Loads ~net (and its replay twin); a bad net is reported and every request answers with it.
+  void loadNetsReporting();
+  void setUpRecording(const std::string& joint_states);
+  // The last saved calibration (or a replayed file, or the nominal frame) published at start-up.
+  void publishStartupCalibration();
+  void startServices();
+
+  bool onService(Request& req, Response& res);
   void onAction(const imagenets_calibration_msgs::CalibrateGoalConstPtr& goal);
-  void onJointStates(const sensor_msgs::JointStateConstPtr& msg);
   void onTf(const tf2_msgs::TFMessageConstPtr& msg, bool is_static);
-  // One sample into the bag being recorded (none: nothing).
-  void record(const StereoPair& pair, const Sample& sample);
 
   // Loads ~net (and its replay twin); throws naming the file, block or port that is wrong.
   void loadNets(const std::string& net, const std::string& replay_net);
-  // The marker detection's time over all poses, s: per pose the larger of the two images' (they
-  // are detected in parallel), as wall time and as the detecting threads' CPU time.
-  struct DetectionTime {
-    double wall = 0, cpu = 0;
-  };
-  // Runs `exec` (the live or the replay net) and returns its result; throws with the failure.
-  // `samples`: N for the feedback (0: unknown; with a target the maximum); fills the last stereo
-  // pair and the detection time.
-  // `requested`: the poses taken in any case (with a target, each one after them is fed back with
-  // the bounds reached).
-  Result runNet(imagenets::Executor& exec, const Progress& progress, int samples, int requested, StereoPair* last_pair,
-                DetectionTime* detection_time);
-  // The until net of the net's sample sub-net (calibration_target.yaml), or null.
-  static imagenets::Executor* untilNet(const imagenets::Executor& exec);
-  void publish(const Result& result, const std::string& frame);
-  std::string savePictures(const StereoPair& pair, const Sample& sample);
-  void publishDetections(const StereoPair& pair, const Sample& sample);
-  void publishSampleMarkers(const Result& result);  // after publish(result): its calibrated model
+  // The robot's description and ~target on every block of the nets that reads one.
+  void setDescriptionAndTarget(const std::string& net);
+
+  // ---- the steps of run()
+  // "" and the node marked busy, or why the request is rejected (another calibration runs).
+  std::string claim(const Request& req, int redundancy, const std::string& method);
+  // Throws naming the request field that is out of range.
+  static void checkRequest(const Request& req, const std::string& method);
+  // The plan's and the solve's properties for this request.
+  PoseCounts configureNet(const CalibrationNetInterface& net, const Request& req, int redundancy,
+                          const std::string& method);
+  // A recording of a live calibration (~record_bag), or null.
+  std::shared_ptr<BagRecorder> startRecording(const Request& req);
+  // Runs the net and returns its result; throws with the failure.
+  NetRun runNet(const CalibrationNetInterface& net, const Progress& progress, const PoseCounts& poses);
+  // One sample into the bag being recorded (none: nothing).
+  void record(const CameraImages& images, const Sample& sample);
+  // After a successful live run: saves the calibration, the URDF, the bag, the pictures, and
+  // publishes it; fills the response.
+  void saveAndPublish(const NetRun& run, const std::shared_ptr<BagRecorder>& recorder, const std::string& target_note,
+                      Response& res);
 
   ros::NodeHandle nh_, pnh_;
   RobotModel model_;
@@ -121,16 +138,14 @@ class CalibrationNode {
   // The calibration net, loaded once, and the same net with the replay sample net.
   std::string net_file_;
   std::unique_ptr<imagenets::Executor> live_, replay_;
+  std::unique_ptr<CalibrationNetInterface> live_net_, replay_net_;
   std::string net_error_;  // why the nets did not load ("" when they did)
   std::atomic<imagenets::Executor*> running_{nullptr};
 
-  ros::Subscriber joint_sub_;
+  std::unique_ptr<CalibrationPublisher> publisher_;
   ros::ServiceServer service_;
   std::unique_ptr<actionlib::SimpleActionServer<imagenets_calibration_msgs::CalibrateAction>> action_;
   std::mutex feedback_mutex_;
-  tf2_ros::StaticTransformBroadcaster static_tf_;
-  tf2_ros::TransformBroadcaster tf_;
-  ros::Publisher markers_pub_, detection_image_pub_[2], detection_info_pub_[2];
 
   // ~record_bag: the recording of the running calibration (null when none), the topics it names
   // and the static transforms so far (written at each recording's start: they are latched).
@@ -140,15 +155,6 @@ class CalibrationNode {
   std::map<std::string, geometry_msgs::TransformStamped> tf_static_;
   ros::Subscriber tf_sub_, tf_static_sub_;
 
-  std::mutex data_mutex_;  // guards last_chain_tf_
-  ros::Time last_chain_tf_;
-
-  std::mutex calibration_mutex_;  // guards current_ and calibrated_model_ (the published calibration)
-  bool have_calibration_ = false;
-  Eigen::Isometry3d current_ = Eigen::Isometry3d::Identity();
-  // The robot as calibrated (estimated joint zero offsets, e.g. the head's tilt): the head chain
-  // of the calibrated camera frames.
-  std::shared_ptr<const RobotModel> calibrated_model_;
   std::mutex busy_mutex_;  // guards busy_with_, and busy_ being set
   std::atomic<bool> busy_{false};
   std::string busy_with_;
