@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <memory>
 #include <cstdio>
@@ -415,7 +416,11 @@ void printThroughput(const Figures& manager, const Figures& plain, const Figures
   if (hosts) std::printf(" %12d", two_hosts.lost);
   std::printf("\n");
   printSummaryRow("nodelet chain, throughput images/s (median of rounds): block nodelets vs plain nodelets", block_rate,
-                  plain_rate, ">= 0.9x", block_rate >= 0.9 * plain_rate);
+                  plain_rate, "", false);
+  // The target is judged on the rounds' own ratios: block and plain measured back to back.
+  const double round_ratio = percentile(round_ratios, 0.5);
+  printSummaryRow("nodelet chain, throughput block / plain nodelets, median of the rounds' ratios", round_ratio, NAN,
+                  ">= 0.9", round_ratio >= 0.9);
   printSummaryRow("nodelet chain, CPU us per image: block nodelets vs plain nodelets", cpu_block, cpu_plain, "", false);
 }
 
