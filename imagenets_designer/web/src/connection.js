@@ -4,7 +4,7 @@
 // would re-render the page while the run's preview frame waits behind them. So `net` and `event`
 // pushes are held until the next display frame and handed on together (one render), and before
 // anything else that arrives, so the order of replies and pushes stays as sent. Port data is not
-// held: a preview is drawn as soon as it is decoded.
+// held: a preview is drawn as soon as it arrives.
 const held = new Set(['net', 'event']);
 
 export class Connection {
