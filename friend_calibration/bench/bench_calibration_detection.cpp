@@ -10,6 +10,7 @@
 // net runs on an executor with one thread, the caller's) and wall time of a left+right pair
 // detected in parallel, as the node does.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdlib>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include "calibration_views.h"
 #include "imagenets_calibration/calibration.h"
 #include "imagenets_calibration/calibration_marker_net.h"
+#include "imagenets/bench_summary.h"
 #include "imagenets/blocks/image.h"
 #include "imagenets/executor.h"
 #include "imagenets/net.h"
@@ -30,6 +32,8 @@ using namespace imagenets_calibration;
 using Clock = std::chrono::steady_clock;
 
 namespace {
+
+const std::string kDefault = "calibration default (Otsu first, stop if good)";
 
 // Accuracy is counted apart for clean views and for views with a reflection whose detection
 // passes the calibration's reprojection gate (FusionLimits::min_reprojection_error, the limit
@@ -85,36 +89,23 @@ Figures measure(const std::vector<CalibrationView>& views, const Detect& detect)
   return f;
 }
 
-}  // namespace
+using Variant = std::pair<std::string, Detect>;
 
-// Arguments (optional): run only the variants whose name contains the first, and measure each the
-// second times (for a profiler: `perf record -D 6000 ... bench_calibration_detection default 20`).
-int main(int argc, char** argv) {
-  const char* only_variant = argc > 1 ? argv[1] : nullptr;
-  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 1;
-  const CalibrationViews data = renderCalibrationViews();
-  const std::vector<CalibrationView>& views = data.views;
-  int reflections = 0;
-  for (const auto& v : views) reflections += v.reflection;
-  std::printf("robust marker detection for the calibration: %zu views of 1024x768 (10 joint-method poses x left/right,\n"
-              "twice; %d with a spurious reflection), region of interest from the nominal prediction;\n"
-              "errors against the true marker pose in the camera frame; 'passed': reflection-disturbed detections\n"
-              "with a reprojection error within the calibration's gate (%.2f px)\n",
-              views.size(), reflections, FusionLimits().min_reprojection_error);
-  std::printf("%-48s %10s %12s | %-12s %7s %8s %8s | %-12s %-6s %8s\n", "sweep", "CPU ms/img", "pair wall ms",
-              "clean found", "mean mm", "mean deg", "worst mm", "refl. found", "passed", "worst mm");
-  struct Variant {
-    std::string name;
-    Detect detect;
-  };
-  // The net gets the image as the node receives it (a ROS message), converted before timing.
+// The views as the node receives them (ROS messages, converted before timing) and one net per
+// camera for each variant.
+struct Variants {
+  const std::vector<CalibrationView>& views;
   std::vector<sensor_msgs::ImageConstPtr> messages;
-  for (const auto& v : views) messages.push_back(imagenets::blocks::toImageMsg(v.image, "mono8", v.info.header));
-  // A variant: the shipped net with its threshold search changed and, if given, other region
-  // margins tried (0 = the whole image); one net per camera, in parallel.
   std::vector<std::unique_ptr<CalibrationMarkerNet>> nets;
-  auto variant = [&](const std::function<void(imagenets::FeedbackSpec&)>& change, bool use_prediction,
-                     std::vector<double> region_margins_px = {}) -> Detect {
+
+  explicit Variants(const std::vector<CalibrationView>& v) : views(v) {
+    for (const auto& view : views) messages.push_back(imagenets::blocks::toImageMsg(view.image, "mono8", view.info.header));
+  }
+
+  // The shipped net with its threshold search changed and, if given, other region margins tried
+  // (0 = the whole image); one net per camera, in parallel.
+  Detect variant(const std::function<void(imagenets::FeedbackSpec&)>& change, bool use_prediction,
+                 std::vector<double> region_margins_px = {}) {
     imagenets::NetSpec spec = CalibrationMarkerNet::specWithSearch([&](imagenets::NetSpec& search) {
       for (auto& b : search.blocks) {
         if (b.feedback) change(*b.feedback);
@@ -128,63 +119,103 @@ int main(int argc, char** argv) {
       nets.push_back(std::make_unique<CalibrationMarkerNet>(spec, 1));
       net = nets.back().get();
     }
-    return [&views, &messages, pair, use_prediction](const CalibrationView& v, int side) {
+    return [this, pair, use_prediction](const CalibrationView& v, int side) {
       return pair[side]->detect(messages[&v - views.data()], v.info,
                                 use_prediction ? std::optional<Eigen::Isometry3d>(v.predicted) : std::nullopt);
     };
+  }
+};
+
+// The threshold grid tried downwards from `from` (after Otsu): a reflection brightens part of the
+// marker's border, which then stays dark only under a high threshold.
+std::function<void(imagenets::FeedbackSpec&)> downwardsFrom(double from) {
+  return [from](imagenets::FeedbackSpec& f) {
+    f.to = std::min(*f.from, *f.to);
+    f.from = from;
+    f.values.clear();
+    for (double v = from; v >= *f.to - 1e-9; v -= *f.step) f.values.push_back(v);
   };
+}
+
+// Candidates given as a list, tried in order, no first guess, no early stop.
+std::function<void(imagenets::FeedbackSpec&)> only(std::vector<double> values) {
+  return [values](imagenets::FeedbackSpec& f) {
+    f.good_enough.reset();
+    f.initial.clear();
+    f.search = "exhaustive";
+    f.coarse_step.reset();
+    f.fine_radius.reset();
+    f.from.reset();
+    f.to.reset();
+    f.step.reset();
+    f.values = values;
+  };
+}
+
+// The calibration's own detection first, then the same net with its search or region changed.
+std::vector<Variant> makeVariants(Variants& v) {
   auto always_sweep = [](imagenets::FeedbackSpec& f) { f.good_enough.reset(); };
-  std::vector<Variant> variants;
   const auto unchanged = [](imagenets::FeedbackSpec&) {};
-  variants.push_back({"calibration default (Otsu first, stop if good)", variant(unchanged, true)});
-  // Its region: 300 px around the prediction, the whole image only where that misses the marker;
-  // a narrower first region, and always the whole image.
-  variants.push_back({"region 120 px, else the whole image", variant(unchanged, true, {120, 0})});
-  variants.push_back({"region always the whole image", variant(unchanged, true, {0})});
-  variants.push_back({"always the coarse-to-fine sweep", variant(always_sweep, true)});
-  // The threshold grid tried downwards from `from` (after Otsu): a reflection brightens part of the
-  // marker's border, which then stays dark only under a high threshold.
-  auto downwards_from = [](double from) {
-    return [from](imagenets::FeedbackSpec& f) {
-      f.to = std::min(*f.from, *f.to);
-      f.from = from;
-      f.values.clear();
-      for (double v = from; v >= *f.to - 1e-9; v -= *f.step) f.values.push_back(v);
-    };
-  };
-  variants.push_back({"grid downwards 190..10 (Otsu first, stop if good)", variant(downwards_from(190), true)});
-  variants.push_back({"grid downwards 220..10 (Otsu first, stop if good)", variant(downwards_from(220), true)});
-  // Candidates given as a list, tried in order, no first guess, no early stop.
-  auto only = [](std::vector<double> values) {
-    return [values](imagenets::FeedbackSpec& f) {
-      f.good_enough.reset();
-      f.initial.clear();
-      f.search = "exhaustive";
-      f.coarse_step.reset();
-      f.fine_radius.reset();
-      f.from.reset();
-      f.to.reset();
-      f.step.reset();
-      f.values = values;
-    };
-  };
   std::vector<double> every5;
   for (int t = 20; t <= 235; t += 5) every5.push_back(t);
-  variants.push_back({"exhaustive 20..235 step 5", variant(only(every5), true)});
-  variants.push_back({"fixed threshold 120 (no search)", variant(only({120}), true)});
-  variants.push_back({"always sweep, whole image (no ROI, no pose hint)", variant(always_sweep, false)});
-  auto print = [](const std::string& name, const Figures& f) {
-    const int views = f.clean + f.disturbed;
-    std::printf("%-48s %10.2f %12.2f | %4d / %-5d %7.3f %8.4f %8.3f | %4d / %-5d %-6d %8.3f\n", name.c_str(),
-                f.cpu_ms / views, f.pair_wall_ms / (views / 2), f.clean_found, f.clean,
-                f.clean_found ? f.clean_sum_mm / f.clean_found : 0, f.clean_found ? f.clean_sum_deg / f.clean_found : 0,
-                f.clean_worst_mm, f.disturbed_found, f.disturbed, f.disturbed_passed, f.gated_worst_mm);
+  return {
+      {kDefault, v.variant(unchanged, true)},
+      // Its region: 300 px around the prediction, the whole image only where that misses the
+      // marker; a narrower first region, and always the whole image.
+      {"region 120 px, else the whole image", v.variant(unchanged, true, {120, 0})},
+      {"region always the whole image", v.variant(unchanged, true, {0})},
+      {"always the coarse-to-fine sweep", v.variant(always_sweep, true)},
+      {"grid downwards 190..10 (Otsu first, stop if good)", v.variant(downwardsFrom(190), true)},
+      {"grid downwards 220..10 (Otsu first, stop if good)", v.variant(downwardsFrom(220), true)},
+      {"exhaustive 20..235 step 5", v.variant(only(every5), true)},
+      {"fixed threshold 120 (no search)", v.variant(only({120}), true)},
+      {"always sweep, whole image (no ROI, no pose hint)", v.variant(always_sweep, false)},
   };
-  for (const auto& v : variants) {
-    if (only_variant && v.name.find(only_variant) == std::string::npos) continue;
-    measure(views, v.detect);  // warm-up (allocations, caches)
-    for (int r = 1; r < repeats; ++r) measure(views, v.detect);
-    print(v.name, measure(views, v.detect));
+}
+
+void printHeader(const std::vector<CalibrationView>& views) {
+  int reflections = 0;
+  for (const auto& v : views) reflections += v.reflection;
+  std::printf("robust marker detection for the calibration: %zu views of 1024x768 (10 joint-method poses x left/right,\n"
+              "twice; %d with a spurious reflection), region of interest from the nominal prediction;\n"
+              "errors against the true marker pose in the camera frame; 'passed': reflection-disturbed detections\n"
+              "with a reprojection error within the calibration's gate (%.2f px)\n",
+              views.size(), reflections, FusionLimits().min_reprojection_error);
+  std::printf("%-48s %10s %12s | %-12s %7s %8s %8s | %-12s %-6s %8s\n", "sweep", "CPU ms/img", "pair wall ms",
+              "clean found", "mean mm", "mean deg", "worst mm", "refl. found", "passed", "worst mm");
+}
+
+void printRow(const std::string& name, const Figures& f) {
+  const int views = f.clean + f.disturbed;
+  std::printf("%-48s %10.2f %12.2f | %4d / %-5d %7.3f %8.4f %8.3f | %4d / %-5d %-6d %8.3f\n", name.c_str(),
+              f.cpu_ms / views, f.pair_wall_ms / (views / 2), f.clean_found, f.clean,
+              f.clean_found ? f.clean_sum_mm / f.clean_found : 0, f.clean_found ? f.clean_sum_deg / f.clean_found : 0,
+              f.clean_worst_mm, f.disturbed_found, f.disturbed, f.disturbed_passed, f.gated_worst_mm);
+  if (name != kDefault) return;
+  const double pair_cpu = 2 * f.cpu_ms / views;
+  imagenets::printSummaryRow("calibration detection, CPU ms per stereo pair (the calibration's net)", pair_cpu, NAN,
+                             "<= 8 ms", pair_cpu <= 8);
+  imagenets::printSummaryRow("calibration detection, wall ms per stereo pair (left, right in parallel)",
+                             f.pair_wall_ms / (views / 2), NAN, "", false);
+  imagenets::printSummaryRow("calibration detection, clean views found", f.clean_found, f.clean, "all",
+                             f.clean_found == f.clean);
+}
+
+}  // namespace
+
+// Arguments (optional): run only the variants whose name contains the first, and measure each the
+// second times (for a profiler: `perf record -D 6000 ... bench_calibration_detection default 20`).
+int main(int argc, char** argv) {
+  const char* only_variant = argc > 1 ? argv[1] : nullptr;
+  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 1;
+  const CalibrationViews data = renderCalibrationViews();
+  printHeader(data.views);
+  Variants variants(data.views);
+  for (const auto& [name, detect] : makeVariants(variants)) {
+    if (only_variant && name.find(only_variant) == std::string::npos) continue;
+    measure(data.views, detect);  // warm-up (allocations, caches)
+    for (int r = 1; r < repeats; ++r) measure(data.views, detect);
+    printRow(name, measure(data.views, detect));
   }
   return 0;
 }

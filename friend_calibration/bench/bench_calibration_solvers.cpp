@@ -7,6 +7,7 @@
 // reflection in about half of the views (friend_calibration/test/calibration_views.h).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "friend_hw_sim/true_robot.h"
 #include "imagenets/blocks/image.h"
 #include "imagenets/package_file.h"
+#include "imagenets/bench_summary.h"
 
 using namespace imagenets_calibration;
 using Clock = std::chrono::steady_clock;
@@ -86,6 +88,9 @@ int main() {
                   angleBetween(r.fixed_point, effective) * 180 / M_PI,
                   (r.fixed_point.translation() - identifiable.translation()).norm() * 1000,
                   angleBetween(r.fixed_point, identifiable) * 180 / M_PI, bound_t, bound_r, ms[ms.size() / 2]);
+      imagenets::printSummaryRow(std::string("calibration solve, effective-pose error mm: ") +
+                                     (solver ? "pixel-level BA" : "joint (3D points)") + ", " + names[set] + " images",
+                                 (r.fixed_point.translation() - effective.translation()).norm() * 1000, NAN, "", false);
     }
   }
   return 0;

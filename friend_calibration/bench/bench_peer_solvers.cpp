@@ -5,7 +5,9 @@
 // `bench_peer_solvers [TRIALS]` (default 50).
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
+#include "imagenets/bench_summary.h"
 #include "peer_study.h"
 
 using namespace imagenets_calibration;
@@ -22,6 +24,16 @@ int main(int argc, char** argv) {
                   r.max_mm[m], r.max_deg[m]);
     }
     std::printf("\n");
+    // Ours (first) against the best of the OpenCV peers in this row.
+    size_t best = 1;
+    for (size_t m = 2; m < r.methods.size(); ++m) {
+      if (r.median_mm[m] < r.median_mm[best]) best = m;
+    }
+    if (r.methods.size() > 1) {
+      imagenets::printSummaryRow("hand-eye, median camera error mm, ours vs best OpenCV peer (" + r.methods[best] +
+                                     "): " + r.row.label(),
+                                 r.median_mm[0], r.median_mm[best], "", false);
+    }
     std::fflush(stdout);
   }
   std::printf("\nMedian error of the camera pose over %d random true robots per row:\n\n%s", trials,

@@ -32,37 +32,54 @@ int sampleIndex(const imagenets::Context& ctx, const imagenets_calibration_msgs:
   return k;
 }
 
+namespace {
+
+// Each bag setting once, as a property: the declaration and the reading both walk these lists.
+struct BagText {
+  const char* name;
+  std::string BagSampleSettings::*field;
+  const char* description;
+};
+struct BagNumber {
+  const char* name;
+  double BagSampleSettings::*field;
+  const char* description;
+  double max;
+};
+const BagText kBagTexts[] = {
+    {"bag_camera", &BagSampleSettings::camera, "bag: camera namespace NS/{left,right}/{image_raw,camera_info}"},
+    {"bag_joint_states", &BagSampleSettings::joint_states, "bag: JointState topic"},
+};
+const BagNumber kBagNumbers[] = {
+    {"still_time", &BagSampleSettings::still_time, "bag: s no joint may move before and after an image taken as a sample",
+     60.0},
+    {"still_tolerance", &BagSampleSettings::still_tolerance,
+     "bag: rad (m) a joint may change and still count as not moving", 1.0},
+    {"max_stereo_offset", &BagSampleSettings::max_stereo_offset, "bag: s between the left and right image stamps of a pair",
+     1.0},
+    {"max_joint_state_age", &BagSampleSettings::max_joint_state_age, "bag: s from an image to each joint's nearest reading",
+     10.0},
+};
+
+}  // namespace
+
 std::vector<imagenets::PropertySpec> bagSampleProperties() {
   using imagenets::PropertySpec;
   using imagenets::PropertyTraits;
   const BagSampleSettings d;
   std::vector<PropertySpec> p;
-  p.emplace_back("bag_camera", PropertyTraits<std::string>::kind, d.camera,
-                 "bag: camera namespace NS/{left,right}/{image_raw,camera_info}");
-  p.emplace_back("bag_joint_states", PropertyTraits<std::string>::kind, d.joint_states, "bag: JointState topic");
-  p.emplace_back("still_time", PropertyTraits<double>::kind, d.still_time,
-                 "bag: s no joint may move before and after an image taken as a sample");
-  p.back().range(0.0, 60.0);
-  p.emplace_back("still_tolerance", PropertyTraits<double>::kind, d.still_tolerance,
-                 "bag: rad (m) a joint may change and still count as not moving");
-  p.back().range(0.0, 1.0);
-  p.emplace_back("max_stereo_offset", PropertyTraits<double>::kind, d.max_stereo_offset,
-                 "bag: s between the left and right image stamps of a pair");
-  p.back().range(0.0, 1.0);
-  p.emplace_back("max_joint_state_age", PropertyTraits<double>::kind, d.max_joint_state_age,
-                 "bag: s from an image to each joint's nearest reading");
-  p.back().range(0.0, 10.0);
+  for (const BagText& t : kBagTexts) p.emplace_back(t.name, PropertyTraits<std::string>::kind, d.*t.field, t.description);
+  for (const BagNumber& n : kBagNumbers) {
+    p.emplace_back(n.name, PropertyTraits<double>::kind, d.*n.field, n.description);
+    p.back().range(0.0, n.max);
+  }
   return p;
 }
 
 BagSampleSettings bagSampleSettings(const imagenets::Context& ctx) {
   BagSampleSettings s;
-  s.camera = ctx.property<std::string>("bag_camera");
-  s.joint_states = ctx.property<std::string>("bag_joint_states");
-  s.still_time = ctx.property<double>("still_time");
-  s.still_tolerance = ctx.property<double>("still_tolerance");
-  s.max_stereo_offset = ctx.property<double>("max_stereo_offset");
-  s.max_joint_state_age = ctx.property<double>("max_joint_state_age");
+  for (const BagText& t : kBagTexts) s.*t.field = ctx.property<std::string>(t.name);
+  for (const BagNumber& n : kBagNumbers) s.*n.field = ctx.property<double>(n.name);
   return s;
 }
 

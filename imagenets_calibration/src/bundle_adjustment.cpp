@@ -365,6 +365,8 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
                                            priorStd(layout, prior_translation, prior_rotation, prior_offset),
                                            variance_factor);
   const Eigen::MatrixXd& c = out.observability.covariance;
+  out.unobservable = out.observability.unobservable;
+  out.condition_number = out.observability.condition_number;
   out.fixed_point_covariance = c.block<6, 6>(0, 0);
   out.marker_offset_covariance = c.block<6, 6>(6, 6);
   out.arm_joint_offset_std.assign(d.arm.joints.size(), 0.0);
@@ -390,6 +392,7 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
   out.head_joint_offsets = head_full;
   for (size_t i = 0; i < layout.arm.size(); ++i) out.arm_joint_offsets[layout.arm[i]] = arm[i];
   for (size_t i = 0; i < layout.head.size(); ++i) out.head_joint_offsets[layout.head[i]] = head[i];
+  out.has_covariance = out.fixed_point_covariance.trace() > 0;
   out.determined = 3 * std::sqrt(out.fixed_point_covariance.topLeftCorner<3, 3>().trace()) < prior_translation &&
                    out.fixed_point_covariance.trace() > 0;
   out.ok = true;

@@ -142,4 +142,22 @@ Result fromMsg(const imagenets_calibration_msgs::CalibrationResult& m) {
   return r;
 }
 
+void summarize(const imagenets_calibration_msgs::CalibrationResult& m, imagenets_calibration_msgs::Calibrate::Response& out) {
+  out.success = m.success;
+  out.message = m.message;
+  out.fixed_point = m.fixed_point;
+  out.std_dev_translation = m.std_dev_translation;
+  out.std_dev_rotation = m.std_dev_rotation;
+  out.fixed_point_covariance = m.fixed_point_covariance;
+  out.samples_used = static_cast<int>(m.used.size());
+  out.samples_rejected = static_cast<int>(m.rejected.size());
+  out.rejected_samples = m.rejected;
+  out.residual_translation = m.residual_translation;
+  out.residual_rotation = m.residual_rotation;
+  out.compute_time = m.compute_time;
+  out.unobservable = m.unobservable;
+  out.condition_number = m.condition_number;
+  out.poses_taken = static_cast<int>(m.samples.size());
+}
+
 }  // namespace imagenets_calibration

@@ -40,22 +40,9 @@ std::string defaultCalibrationFile() {
 
 template <class Out>
 void fill(Out& out, const Result& r, const std::string& base, const std::string& child) {
-  out.success = r.success;
-  out.message = r.message;
-  out.fixed_point = imagenets::frames::toTransformStamped(r.fixed_point, base, child, ros::Time::now());
-  out.std_dev_translation = imagenets::frames::toVector3Msg(r.std_translation);
-  out.std_dev_rotation = imagenets::frames::toVector3Msg(r.std_rotation);
-  std::copy(r.fixed_point_covariance.data(), r.fixed_point_covariance.data() + 36, out.fixed_point_covariance.begin());
-  out.samples_used = static_cast<int>(r.used.size());
-  out.samples_rejected = static_cast<int>(r.rejected.size());
-  out.rejected_samples = r.rejected;
-  out.residual_translation = r.residual_translation;
-  out.residual_rotation = r.residual_rotation;
-  out.compute_time = r.compute_time;
-  out.unobservable = r.unobservable;
-  out.condition_number = r.condition_number;
+  summarize(toMsg(r, base, child), out);
+  out.fixed_point.header.stamp = ros::Time::now();
   fillBounds(out, r);
-  out.poses_taken = static_cast<int>(r.samples.size());
 }
 
 // "; uncertainty target met: 3 sigma 0.312 mm / 0.0310 deg after 12 poses (target 0.400 mm, at

@@ -228,17 +228,10 @@ std::string utcStamp(bool iso) {
   return b;
 }
 
-std::string saveCalibration(const StoredCalibration& c, const std::string& path) {
-  const Result& r = c.result;
-  YAML::Emitter out;
-  out.SetDoublePrecision(17);
-  out << YAML::Comment("pan-tilt head fixed point calibration (imagenets_calibration)");
-  out << YAML::BeginMap;
-  out << YAML::Key << "created" << YAML::Value << (c.created.empty() ? utcStamp(true) : c.created);
-  out << YAML::Key << "base_frame" << YAML::Value << c.base_frame;
-  out << YAML::Key << "child_frame" << YAML::Value << c.child_frame;
-  out << YAML::Key << "method" << YAML::Value << r.method;
-  out << YAML::Key << "message" << YAML::Value << r.message;
+namespace {
+
+// The estimated parameters and the samples' spread.
+void emitEstimate(YAML::Emitter& out, const Result& r) {
   out << YAML::Key << "fixed_point" << YAML::Value;
   emitFrame(out, r.fixed_point);
   out << YAML::Key << "marker_offset" << YAML::Value;
@@ -253,25 +246,28 @@ std::string saveCalibration(const StoredCalibration& c, const std::string& path)
   emitVector(out, r.std_translation);
   out << YAML::Key << "std_dev_rotation" << YAML::Value;
   emitVector(out, r.std_rotation);
-  if (r.has_covariance) {
-    // The pixel-level fit's uncertainty (calibration.h): row-major 6x6, (translation m, rotation rad).
-    out << YAML::Key << "fixed_point_covariance" << YAML::Value;
-    emitList(out, std::vector<double>(r.fixed_point_covariance.data(), r.fixed_point_covariance.data() + 36));
-    out << YAML::Key << "marker_offset_covariance" << YAML::Value;
-    emitList(out, std::vector<double>(r.marker_offset_covariance.data(), r.marker_offset_covariance.data() + 36));
-    out << YAML::Key << "arm_joint_offset_std" << YAML::Value;
-    emitList(out, r.arm_joint_offset_std);
-    out << YAML::Key << "head_joint_offset_std" << YAML::Value;
-    emitList(out, r.head_joint_offset_std);
-    out << YAML::Key << "reprojection_rms" << YAML::Value << r.reprojection_rms;
-    // Which parameters the poses did not determine (observability.h); inf is written as .inf.
-    out << YAML::Key << "observability" << YAML::Value << YAML::BeginMap;
-    out << YAML::Key << "condition_number" << YAML::Value << r.condition_number;
-    out << YAML::Key << "unobservable" << YAML::Value;
-    emitList(out, r.unobservable);
-    out << YAML::EndMap;
-  }
-  out << YAML::Key << "compute_time" << YAML::Value << r.compute_time;
+}
+
+// The pixel-level fit's uncertainty (calibration.h): row-major 6x6, (translation m, rotation rad).
+void emitUncertainty(YAML::Emitter& out, const Uncertainty& u) {
+  out << YAML::Key << "fixed_point_covariance" << YAML::Value;
+  emitList(out, std::vector<double>(u.fixed_point_covariance.data(), u.fixed_point_covariance.data() + 36));
+  out << YAML::Key << "marker_offset_covariance" << YAML::Value;
+  emitList(out, std::vector<double>(u.marker_offset_covariance.data(), u.marker_offset_covariance.data() + 36));
+  out << YAML::Key << "arm_joint_offset_std" << YAML::Value;
+  emitList(out, u.arm_joint_offset_std);
+  out << YAML::Key << "head_joint_offset_std" << YAML::Value;
+  emitList(out, u.head_joint_offset_std);
+  out << YAML::Key << "reprojection_rms" << YAML::Value << u.reprojection_rms;
+  // Which parameters the poses did not determine (observability.h); inf is written as .inf.
+  out << YAML::Key << "observability" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "condition_number" << YAML::Value << u.condition_number;
+  out << YAML::Key << "unobservable" << YAML::Value;
+  emitList(out, u.unobservable);
+  out << YAML::EndMap;
+}
+
+void emitRejections(YAML::Emitter& out, const Result& r) {
   out << YAML::Key << "used" << YAML::Value;
   emitList(out, r.used);
   out << YAML::Key << "rejected" << YAML::Value << YAML::BeginSeq;
@@ -280,55 +276,84 @@ std::string saveCalibration(const StoredCalibration& c, const std::string& path)
         << "reason" << YAML::Value << (i < r.rejection_reasons.size() ? r.rejection_reasons[i] : "") << YAML::EndMap;
   }
   out << YAML::EndSeq;
-  out << YAML::Key << "samples" << YAML::Value << YAML::BeginSeq;
-  for (size_t i = 0; i < r.samples.size(); ++i) {
-    const Sample& s = r.samples[i];
-    out << YAML::BeginMap;
-    out << YAML::Key << "index" << YAML::Value << i;
-    out << YAML::Key << "stamp" << YAML::Value << s.stamp;
-    out << YAML::Key << "arm_q" << YAML::Value;
-    emitList(out, s.arm_q);
-    out << YAML::Key << "head_q" << YAML::Value;
-    emitList(out, s.head_q);
-    out << YAML::Key << "left" << YAML::Value;
-    emitObservation(out, s.left);
-    out << YAML::Key << "right" << YAML::Value;
-    emitObservation(out, s.right);
-    out << YAML::Key << "valid" << YAML::Value << s.valid;
-    out << YAML::Key << "fusion" << YAML::Value << s.fusion;
-    out << YAML::Key << "reason" << YAML::Value << s.reason;
-    if (s.valid) {
-      out << YAML::Key << "fixed_point" << YAML::Value;
-      emitFrame(out, s.fixed_point);
-    }
-    if (i < r.residual_translation.size() && std::isfinite(r.residual_translation[i])) {
-      out << YAML::Key << "residual_translation" << YAML::Value << r.residual_translation[i];
-      out << YAML::Key << "residual_rotation" << YAML::Value << r.residual_rotation[i];
-    }
-    out << YAML::EndMap;
+}
+
+void emitSample(YAML::Emitter& out, const Result& r, size_t i) {
+  const Sample& s = r.samples[i];
+  out << YAML::BeginMap;
+  out << YAML::Key << "index" << YAML::Value << i;
+  out << YAML::Key << "stamp" << YAML::Value << s.stamp;
+  out << YAML::Key << "arm_q" << YAML::Value;
+  emitList(out, s.arm_q);
+  out << YAML::Key << "head_q" << YAML::Value;
+  emitList(out, s.head_q);
+  out << YAML::Key << "left" << YAML::Value;
+  emitObservation(out, s.left);
+  out << YAML::Key << "right" << YAML::Value;
+  emitObservation(out, s.right);
+  out << YAML::Key << "valid" << YAML::Value << s.valid;
+  out << YAML::Key << "fusion" << YAML::Value << s.fusion;
+  out << YAML::Key << "reason" << YAML::Value << s.reason;
+  if (s.valid) {
+    out << YAML::Key << "fixed_point" << YAML::Value;
+    emitFrame(out, s.fixed_point);
   }
+  if (i < r.residual_translation.size() && std::isfinite(r.residual_translation[i])) {
+    out << YAML::Key << "residual_translation" << YAML::Value << r.residual_translation[i];
+    out << YAML::Key << "residual_rotation" << YAML::Value << r.residual_rotation[i];
+  }
+  out << YAML::EndMap;
+}
+
+// The whole file's text before its CRC line.
+std::string calibrationYaml(const StoredCalibration& c, const std::string& path) {
+  const Result& r = c.result;
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << YAML::Comment("pan-tilt head fixed point calibration (imagenets_calibration)");
+  out << YAML::BeginMap;
+  out << YAML::Key << "created" << YAML::Value << (c.created.empty() ? utcStamp(true) : c.created);
+  out << YAML::Key << "base_frame" << YAML::Value << c.base_frame;
+  out << YAML::Key << "child_frame" << YAML::Value << c.child_frame;
+  out << YAML::Key << "method" << YAML::Value << r.method;
+  out << YAML::Key << "message" << YAML::Value << r.message;
+  emitEstimate(out, r);
+  if (r.has_covariance) emitUncertainty(out, r);
+  out << YAML::Key << "compute_time" << YAML::Value << r.compute_time;
+  emitRejections(out, r);
+  out << YAML::Key << "samples" << YAML::Value << YAML::BeginSeq;
+  for (size_t i = 0; i < r.samples.size(); ++i) emitSample(out, r, i);
   out << YAML::EndSeq;
   out << YAML::EndMap;
   if (!out.good()) throw std::runtime_error("cannot write calibration '" + path + "': " + out.GetLastError());
+  return std::string(out.c_str()) + "\n";
+}
+
+// Keeps the calibration at `path` under its own time stamp (never overwriting an archive);
+// returns where ("" when there was none).
+std::string archivePrevious(const std::string& path) {
+  const fs::path target(path);
+  if (!fs::exists(target)) return "";
+  const std::string stem = target.stem().string();
+  const std::string base = (target.parent_path() / (stem + "." + utcStamp(false))).string();
+  std::string archived = base + ".yaml";
+  for (int k = 1; fs::exists(archived); ++k) archived = base + "_" + std::to_string(k) + ".yaml";
+  std::error_code ec;
+  fs::copy_file(target, archived, ec);
+  if (ec) throw std::runtime_error("cannot archive the previous calibration to '" + archived + "'");
+  return archived;
+}
+
+}  // namespace
+
+std::string saveCalibration(const StoredCalibration& c, const std::string& path) {
   // The last line holds the CRC-32 of every byte before it: a file cut short anywhere (a full
   // disk, an interrupted copy) or altered is refused, also where the rest would still parse.
-  const std::string body = std::string(out.c_str()) + "\n";
+  const std::string body = calibrationYaml(c, path);
   char crc_line[40];
   std::snprintf(crc_line, sizeof crc_line, "%s0x%08x\n", kCrcKey, crc32(body));
-
   std::string archived;
-  writeAtomically(path, body + crc_line, "calibration", [&] {
-    const fs::path target(path);
-    if (!fs::exists(target)) return;
-    // Keep the previous calibration under its own time stamp (never overwrite an archive).
-    const std::string stem = target.stem().string();
-    std::string base = (target.parent_path() / (stem + "." + utcStamp(false))).string();
-    archived = base + ".yaml";
-    for (int k = 1; fs::exists(archived); ++k) archived = base + "_" + std::to_string(k) + ".yaml";
-    std::error_code ec;
-    fs::copy_file(target, archived, ec);
-    if (ec) throw std::runtime_error("cannot archive the previous calibration to '" + archived + "'");
-  });
+  writeAtomically(path, body + crc_line, "calibration", [&] { archived = archivePrevious(path); });
   return archived;
 }
 
@@ -372,6 +397,66 @@ std::string urdfFileBeside(const std::string& calibration_file) {
   return fs::path(calibration_file).replace_extension(".urdf").string();
 }
 
+namespace {
+
+// Files written before the pixel-level fit have no covariance (has_covariance stays false).
+void readUncertainty(const Reader& rd, const YAML::Node& root, Uncertainty& u) {
+  if (!root["fixed_point_covariance"]) return;
+  const auto fc = rd.numbers(root, "fixed_point_covariance", "", 36);
+  const auto mc = rd.numbers(root, "marker_offset_covariance", "", 36);
+  u.fixed_point_covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6>>(fc.data());
+  u.marker_offset_covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6>>(mc.data());
+  u.arm_joint_offset_std = rd.numbers(root, "arm_joint_offset_std", "", 0);
+  u.head_joint_offset_std = rd.numbers(root, "head_joint_offset_std", "", 0);
+  if (root["reprojection_rms"]) u.reprojection_rms = root["reprojection_rms"].as<double>();
+  // Files written before the observability report have none (condition number 0 = not computed).
+  if (const YAML::Node o = root["observability"]) {
+    u.condition_number = rd.get(o, "condition_number", "observability.").as<double>();
+    u.unobservable = rd.get(o, "unobservable", "observability.").as<std::vector<std::string>>();
+  }
+  u.has_covariance = true;
+}
+
+void readEstimate(const Reader& rd, const YAML::Node& root, Result& r) {
+  r.fixed_point = rd.frame(root, "fixed_point", "");
+  if (root["marker_offset"]) r.marker_offset = rd.frame(root, "marker_offset", "");
+  if (root["arm_joint_offsets"]) r.arm_joint_offsets = rd.numbers(root, "arm_joint_offsets", "", 0);
+  if (root["head_joint_offsets"]) r.head_joint_offsets = rd.numbers(root, "head_joint_offsets", "", 0);
+  const auto st = rd.numbers(root, "std_dev_translation", "", 3), sr = rd.numbers(root, "std_dev_rotation", "", 3);
+  r.std_translation = Eigen::Vector3d(st[0], st[1], st[2]);
+  r.std_rotation = Eigen::Vector3d(sr[0], sr[1], sr[2]);
+}
+
+void readSamples(const Reader& rd, const YAML::Node& root, Result& r) {
+  if (root["used"]) r.used = root["used"].as<std::vector<int>>();
+  for (const auto& rej : root["rejected"]) {
+    r.rejected.push_back(rej["sample"].as<int>());
+    r.rejection_reasons.push_back(rej["reason"] ? rej["reason"].as<std::string>() : "");
+  }
+  const YAML::Node samples = root["samples"];
+  for (size_t i = 0; samples && i < samples.size(); ++i) {
+    const std::string w = "samples[" + std::to_string(i) + "].";
+    const YAML::Node n = samples[i];
+    Sample s;
+    s.stamp = n["stamp"] ? n["stamp"].as<double>() : 0.0;
+    s.arm_q = rd.numbers(n, "arm_q", w, 0);
+    s.head_q = rd.numbers(n, "head_q", w, 0);
+    s.left = rd.observation(n, "left", w);
+    s.right = rd.observation(n, "right", w);
+    s.valid = n["valid"] && n["valid"].as<bool>();
+    if (n["fusion"]) s.fusion = n["fusion"].as<std::string>();
+    if (n["reason"]) s.reason = n["reason"].as<std::string>();
+    if (s.valid && n["fixed_point"]) s.fixed_point = rd.frame(n, "fixed_point", w);
+    r.residual_translation.push_back(n["residual_translation"] ? n["residual_translation"].as<double>()
+                                                               : std::numeric_limits<double>::quiet_NaN());
+    r.residual_rotation.push_back(n["residual_rotation"] ? n["residual_rotation"].as<double>()
+                                                         : std::numeric_limits<double>::quiet_NaN());
+    r.samples.push_back(std::move(s));
+  }
+}
+
+}  // namespace
+
 StoredCalibration loadCalibration(const std::string& path) {
   StoredCalibration c;
   c.file = path;
@@ -394,55 +479,10 @@ StoredCalibration loadCalibration(const std::string& path) {
     r.success = true;
     r.method = rd.get(root, "method", "").as<std::string>();
     if (root["message"]) r.message = root["message"].as<std::string>();
-    r.fixed_point = rd.frame(root, "fixed_point", "");
-    if (root["marker_offset"]) r.marker_offset = rd.frame(root, "marker_offset", "");
-    if (root["arm_joint_offsets"]) r.arm_joint_offsets = rd.numbers(root, "arm_joint_offsets", "", 0);
-    if (root["head_joint_offsets"]) r.head_joint_offsets = rd.numbers(root, "head_joint_offsets", "", 0);
-    auto st = rd.numbers(root, "std_dev_translation", "", 3), sr = rd.numbers(root, "std_dev_rotation", "", 3);
-    r.std_translation = Eigen::Vector3d(st[0], st[1], st[2]);
-    r.std_rotation = Eigen::Vector3d(sr[0], sr[1], sr[2]);
-    // Files written before the pixel-level fit have no covariance (has_covariance stays false).
-    if (root["fixed_point_covariance"]) {
-      const auto fc = rd.numbers(root, "fixed_point_covariance", "", 36);
-      const auto mc = rd.numbers(root, "marker_offset_covariance", "", 36);
-      r.fixed_point_covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6>>(fc.data());
-      r.marker_offset_covariance = Eigen::Map<const Eigen::Matrix<double, 6, 6>>(mc.data());
-      r.arm_joint_offset_std = rd.numbers(root, "arm_joint_offset_std", "", 0);
-      r.head_joint_offset_std = rd.numbers(root, "head_joint_offset_std", "", 0);
-      if (root["reprojection_rms"]) r.reprojection_rms = root["reprojection_rms"].as<double>();
-      // Files written before the observability report have none (condition number 0 = not computed).
-      if (const YAML::Node o = root["observability"]) {
-        r.condition_number = rd.get(o, "condition_number", "observability.").as<double>();
-        r.unobservable = rd.get(o, "unobservable", "observability.").as<std::vector<std::string>>();
-      }
-      r.has_covariance = true;
-    }
+    readEstimate(rd, root, r);
+    readUncertainty(rd, root, r);
     if (root["compute_time"]) r.compute_time = root["compute_time"].as<double>();
-    if (root["used"]) r.used = root["used"].as<std::vector<int>>();
-    for (const auto& rej : root["rejected"]) {
-      r.rejected.push_back(rej["sample"].as<int>());
-      r.rejection_reasons.push_back(rej["reason"] ? rej["reason"].as<std::string>() : "");
-    }
-    const YAML::Node samples = root["samples"];
-    for (size_t i = 0; samples && i < samples.size(); ++i) {
-      const std::string w = "samples[" + std::to_string(i) + "].";
-      const YAML::Node n = samples[i];
-      Sample s;
-      s.stamp = n["stamp"] ? n["stamp"].as<double>() : 0.0;
-      s.arm_q = rd.numbers(n, "arm_q", w, 0);
-      s.head_q = rd.numbers(n, "head_q", w, 0);
-      s.left = rd.observation(n, "left", w);
-      s.right = rd.observation(n, "right", w);
-      s.valid = n["valid"] && n["valid"].as<bool>();
-      if (n["fusion"]) s.fusion = n["fusion"].as<std::string>();
-      if (n["reason"]) s.reason = n["reason"].as<std::string>();
-      if (s.valid && n["fixed_point"]) s.fixed_point = rd.frame(n, "fixed_point", w);
-      r.residual_translation.push_back(n["residual_translation"] ? n["residual_translation"].as<double>()
-                                                                 : std::numeric_limits<double>::quiet_NaN());
-      r.residual_rotation.push_back(n["residual_rotation"] ? n["residual_rotation"].as<double>()
-                                                           : std::numeric_limits<double>::quiet_NaN());
-      r.samples.push_back(std::move(s));
-    }
+    readSamples(rd, root, r);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error("calibration file '" + path + "': " + e.what());
   }

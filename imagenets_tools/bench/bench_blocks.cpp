@@ -1,7 +1,7 @@
 // bench_blocks: time per 1024x768 image of the preprocessing and segmentation blocks and of SGBM
 // stereo, each beside the raw OpenCV call it wraps. The ratio is what the block wrapper costs
 // (input checks, message wrapping: cv_bridge copies the result into the message once).
-// Prints figures; passes or fails nothing.
+// Prints figures and SUMMARY rows; passes or fails nothing.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/CameraInfo.h>
 
+#include "imagenets/bench_summary.h"
 #include "imagenets/blocks/block_harness.h"
 #include "imagenets/blocks/image.h"
 
@@ -34,28 +35,36 @@ void row(const char* name, BlockHarness& block, const std::function<void()>& raw
   const double b = medianMs([&] { block.run(); }, runs);
   const double r = medianMs(raw, runs);
   std::printf("%-26s %10.3f %10.3f %8.2f\n", name, b, r, b / r);
+  imagenets::printSummaryRow(std::string("block vs the OpenCV call it wraps, ms/image: ") + name, b, r, "", false);
 }
 
-}  // namespace
+// A synthetic 1024x768 stereo pair, colour and gray, as messages and as images.
+struct Inputs {
+  sensor_msgs::ImageConstPtr left_msg, right_msg, gray_msg, right_gray_msg;
+  cv::Mat left, right, gray, right_gray;
+};
 
-int main() {
-  const int runs = 25;
+Inputs makeInputs() {
+  Inputs in;
   BlockHarness pair("imagenets/SyntheticStereoPair");
   pair.set("width", 1024).set("height", 768).set("focal_length", 900.0).set("baseline", 0.12);
   pair.run();
-  auto left_msg = pair.output<sensor_msgs::Image>("left");
-  auto right_msg = pair.output<sensor_msgs::Image>("right");
-  const cv::Mat left(768, 1024, CV_8UC3, const_cast<uint8_t*>(left_msg->data.data()), left_msg->step);
-  const cv::Mat right(768, 1024, CV_8UC3, const_cast<uint8_t*>(right_msg->data.data()), right_msg->step);
-  cv::Mat gray, right_gray, out;
-  cv::cvtColor(left, gray, cv::COLOR_BGR2GRAY);
-  cv::cvtColor(right, right_gray, cv::COLOR_BGR2GRAY);
-  auto gray_msg = toImageMsg(gray, "mono8", left_msg->header);
-  auto right_gray_msg = toImageMsg(right_gray, "mono8", right_msg->header);
+  in.left_msg = pair.output<sensor_msgs::Image>("left");
+  in.right_msg = pair.output<sensor_msgs::Image>("right");
+  in.left = cv::Mat(768, 1024, CV_8UC3, const_cast<uint8_t*>(in.left_msg->data.data()), in.left_msg->step);
+  in.right = cv::Mat(768, 1024, CV_8UC3, const_cast<uint8_t*>(in.right_msg->data.data()), in.right_msg->step);
+  cv::cvtColor(in.left, in.gray, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(in.right, in.right_gray, cv::COLOR_BGR2GRAY);
+  in.gray_msg = toImageMsg(in.gray, "mono8", in.left_msg->header);
+  in.right_gray_msg = toImageMsg(in.right_gray, "mono8", in.right_msg->header);
+  return in;
+}
 
-  std::printf("1024x768, median of %d runs (SGBM: 5)\n", runs);
-  std::printf("%-26s %10s %10s %8s\n", "block", "block ms", "OpenCV ms", "ratio");
-
+void benchPreprocessing(const Inputs& in, int runs) {
+  const auto& left_msg = in.left_msg;
+  const auto& gray_msg = in.gray_msg;
+  const cv::Mat &left = in.left, &gray = in.gray;
+  cv::Mat out;
   BlockHarness grayscale("imagenets/Grayscale");
   grayscale.input("image", left_msg);
   row("Grayscale (bgr8)", grayscale, [&] { cv::cvtColor(left, out, cv::COLOR_BGR2GRAY); }, runs);
@@ -96,6 +105,13 @@ int main() {
   BlockHarness crop("imagenets/CropRoi");
   crop.set("x", 100).set("y", 100).set("width", 640).set("height", 480).input("image", gray_msg);
   row("CropRoi 640x480", crop, [&] { out = gray(cv::Rect(100, 100, 640, 480)).clone(); }, runs);
+}
+
+void benchSegmentationAndStereo(const Inputs& in, int runs) {
+  const auto& left_msg = in.left_msg;
+  const auto& gray_msg = in.gray_msg;
+  const cv::Mat &left = in.left, &gray = in.gray;
+  cv::Mat out;
 
   BlockHarness threshold("imagenets/Threshold");
   threshold.input("image", gray_msg);
@@ -120,8 +136,19 @@ int main() {
   }, runs);
 
   BlockHarness sgbm_block("imagenets/StereoDisparity");
-  sgbm_block.input("left", gray_msg).input("right", right_gray_msg);
+  sgbm_block.input("left", gray_msg).input("right", in.right_gray_msg);
   auto sgbm = cv::StereoSGBM::create(0, 128, 5, 8 * 25, 32 * 25, 1, 63, 10, 100, 2, cv::StereoSGBM::MODE_SGBM);
-  row("StereoDisparity SGBM 128", sgbm_block, [&] { sgbm->compute(gray, right_gray, out); }, 5);
+  row("StereoDisparity SGBM 128", sgbm_block, [&] { sgbm->compute(gray, in.right_gray, out); }, 5);
+}
+
+}  // namespace
+
+int main() {
+  const int runs = 25;
+  const Inputs in = makeInputs();
+  std::printf("1024x768, median of %d runs (SGBM: 5)\n", runs);
+  std::printf("%-26s %10s %10s %8s\n", "block", "block ms", "OpenCV ms", "ratio");
+  benchPreprocessing(in, runs);
+  benchSegmentationAndStereo(in, runs);
   return 0;
 }

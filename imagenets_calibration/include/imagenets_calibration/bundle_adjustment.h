@@ -48,24 +48,16 @@ struct BundleAdjustmentOptions {
   double noise_sigma = 0.0;
 };
 
-struct BundleAdjustment {
+// The fit's solution (Estimate: fixed point, marker offset, full-length joint offsets) and its
+// Uncertainty (calibration.h), and how the fit went.
+struct BundleAdjustment : Estimate, Uncertainty {
   bool ok = false;
   std::string message;  // what was fitted, or why not
-  Eigen::Isometry3d fixed_point = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d marker_offset = Eigen::Isometry3d::Identity();
-  std::vector<double> arm_joint_offsets, head_joint_offsets;  // full length, rad
-  // Covariances at the solution, scaled by the residual variance. Fixed point and marker offset:
-  // (translation m, rotation vector rad), perturbed on the left: X = (exp(w) R, t + dt) in the
-  // parent frame (base, TCP). Joint offsets: standard deviations, full length (0 = not estimated).
-  Eigen::Matrix<double, 6, 6> fixed_point_covariance = Eigen::Matrix<double, 6, 6>::Zero();
-  Eigen::Matrix<double, 6, 6> marker_offset_covariance = Eigen::Matrix<double, 6, 6>::Zero();
-  std::vector<double> arm_joint_offset_std, head_joint_offset_std;
   // The images determine the fixed point: its 3-sigma translation bound is below the marker
   // offset's prior sigma. Not so with one relative motion (a single joint loop: the marker
   // offset's rotation about the motion's axis is free, 3 sigma ~0.5 m); the priors decide then.
   bool determined = false;
   double noise_sigma = 0.0;      // px, robust estimate of the point noise from the residuals
-  double reprojection_rms = 0.0; // px, over the used points
   int observations = 0;          // detections used (left and right count separately)
   // Which parameters these detections determine, and the posterior covariance of all of them
   // (parameter order: fixed point, marker offset, arm offsets, head offsets as estimated).

@@ -123,28 +123,23 @@ struct CombineOptions {
   int min_valid_samples = 1;                 // fewer valid (after rejection) -> failure
 };
 
-struct Result {
-  bool success = false;
-  std::string message;
-  std::string method;  // "paper" or "joint"
+// What a calibration estimates (fixed point, target offset, joint zero offsets): one definition
+// that the result and the pixel-level fit (bundle_adjustment.h) share, so the fit's solution is
+// taken over as a whole, not field by field.
+struct Estimate {
   Eigen::Isometry3d fixed_point = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d marker_offset = Eigen::Isometry3d::Identity();  // TCP -> marker used / estimated
   // Joint zero offsets estimated by the joint method (rad, added to the DH theta offsets; empty =
   // none). Arm joints 1 and 7 and the pan are not estimated: their offsets are indistinguishable
   // from a rotation of the fixed point, of the marker offset and of the fixed point about z.
   std::vector<double> arm_joint_offsets, head_joint_offsets;
-  Eigen::Vector3d std_translation = Eigen::Vector3d::Zero();  // m, per axis, over the used samples
-  Eigen::Vector3d std_rotation = Eigen::Vector3d::Zero();     // rad, rotation vector per axis
-  std::vector<int> used, rejected;                            // sample indices
-  std::vector<std::string> rejection_reasons;                 // parallel to `rejected`
-  std::vector<double> residual_translation, residual_rotation;  // per sample (NaN when invalid)
-  std::vector<Sample> samples;
-  double compute_time = 0.0;  // s
-  // Joint method fitted at pixel level (bundle_adjustment.h; when the detections carry their 8
-  // points and the description's camera models fit them): the uncertainty at the solution,
-  // scaled by the residual variance. Fixed point and marker offset: 6x6 over (translation m,
-  // rotation vector rad), perturbed on the left in the parent frame: X = (exp(w) R, t + dt).
-  // Joint offsets: standard deviations (rad, 0 = not estimated). All zero when not computed.
+};
+
+// The uncertainty of an Estimate from the pixel-level fit: the covariance at the solution, scaled
+// by the residual variance. Fixed point and marker offset: 6x6 over (translation m, rotation
+// vector rad), perturbed on the left in the parent frame: X = (exp(w) R, t + dt). Joint offsets:
+// standard deviations (rad, 0 = not estimated). All zero when not computed.
+struct Uncertainty {
   bool has_covariance = false;
   Eigen::Matrix<double, 6, 6> fixed_point_covariance = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 6> marker_offset_covariance = Eigen::Matrix<double, 6, 6>::Zero();
@@ -156,6 +151,23 @@ struct Result {
   // computed, inf = a direction not observed at all).
   std::vector<std::string> unobservable;
   double condition_number = 0.0;
+  // Per-parameter standard deviations: sqrt of the covariance's diagonal, (x, y, z m, rx, ry, rz
+  // rad about the parent frame's axes); 0 for a parameter held at its nominal value.
+  Eigen::Matrix<double, 6, 1> fixedPointStd() const { return fixed_point_covariance.diagonal().cwiseSqrt(); }
+  Eigen::Matrix<double, 6, 1> markerOffsetStd() const { return marker_offset_covariance.diagonal().cwiseSqrt(); }
+};
+
+struct Result : Estimate, Uncertainty {
+  bool success = false;
+  std::string message;
+  std::string method;  // "paper" or "joint"
+  Eigen::Vector3d std_translation = Eigen::Vector3d::Zero();  // m, per axis, over the used samples
+  Eigen::Vector3d std_rotation = Eigen::Vector3d::Zero();     // rad, rotation vector per axis
+  std::vector<int> used, rejected;                            // sample indices
+  std::vector<std::string> rejection_reasons;                 // parallel to `rejected`
+  std::vector<double> residual_translation, residual_rotation;  // per sample (NaN when invalid)
+  std::vector<Sample> samples;
+  double compute_time = 0.0;  // s
   // One number each for the fixed point: sqrt(trace) of the translation / rotation block (m, rad);
   // the true error lies within 3 of it with high probability.
   double sigmaTranslation() const { return std::sqrt(fixed_point_covariance.topLeftCorner<3, 3>().trace()); }

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include <imagenets_calibration_msgs/Calibrate.h>
 #include <imagenets_calibration_msgs/CalibrationResult.h>
 #include <imagenets/FeedbackTrace.h>
 #include <imagenets/MarkerDetection.h>
@@ -27,5 +28,9 @@ Sample fromMsg(const imagenets_calibration_msgs::CalibrationSample& msg);
 // `base` / `child`: the fixed point's frames.
 imagenets_calibration_msgs::CalibrationResult toMsg(const Result& result, const std::string& base, const std::string& child);
 Result fromMsg(const imagenets_calibration_msgs::CalibrationResult& msg);
+// The Calibrate response's summary of a result: its fields taken from the result message's of
+// the same meaning (the action's result is the same definition). The fields that depend on the
+// run (times, target, files) are left to the caller.
+void summarize(const imagenets_calibration_msgs::CalibrationResult& result, imagenets_calibration_msgs::Calibrate::Response& out);
 
 }  // namespace imagenets_calibration

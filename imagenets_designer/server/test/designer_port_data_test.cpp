@@ -73,8 +73,13 @@ TEST(PortData, DisparityImagesAreStretchedForThePreviewAndRawInFull) {
   for (int i = 0; i < 1024; ++i) px[i] = i % 512 == 0 ? NAN : 10.0f + static_cast<float>(i % 512);
   const Value value = PortType::of<sensor_msgs::Image>().wrap<sensor_msgs::Image>(image);
   const Frame preview = encode(value, "preview");
-  EXPECT_EQ(preview.header["format"], "jpeg");
+  EXPECT_EQ(preview.header["format"], "pixels");
   EXPECT_EQ(preview.header["preview_width"], 256);
+  EXPECT_EQ(preview.header["channels"], 1);
+  // Stretched over the finite values: the NaN and the smallest show black, the largest white.
+  ASSERT_EQ(preview.payload.size(), 256u * 1u);
+  EXPECT_EQ(static_cast<unsigned char>(preview.payload[0]), 0);
+  EXPECT_GE(static_cast<unsigned char>(preview.payload[255]), 254);
   EXPECT_EQ(preview.header["encoding"], "32FC1");
   const Frame full = encode(value, "full");
   EXPECT_EQ(full.header["format"], "raw");

@@ -7,7 +7,7 @@ export function Preview({ port, data }) {
   if (header.format === 'none') {
     return <div className="preview-value none" data-revision={revision}>no value{header.error ? `: ${header.error}` : ''}</div>;
   }
-  if (data.bitmap) return <Thumbnail port={port} bitmap={data.bitmap} revision={revision} />;
+  if (data.image) return <Thumbnail port={port} image={data.image} revision={revision} />;
   const shown = (element) => <div className="preview-value" ref={(e) => e && noteShown(port, revision)}
     data-revision={revision}>{element}</div>;
   if (header.format === 'xyzrgb') return shown(`${Math.floor(data.payload.byteLength / 16)} points`);
@@ -21,14 +21,57 @@ export function Preview({ port, data }) {
   return shown(<pre>{summary(value)}</pre>);
 }
 
-function Thumbnail({ port, bitmap, revision }) {
+// The thumbnails on the page by port: a new preview of the same size is drawn straight onto them
+// when it arrives (drawNow), before the page re-renders.
+const thumbnails = new Map();
+
+function Thumbnail({ port, image, revision }) {
   const canvas = useRef(null);
   useLayoutEffect(() => {
-    canvas.current.getContext('2d').drawImage(bitmap, 0, 0);
-    noteShown(port, revision);
-  }, [bitmap]);
-  return <canvas ref={canvas} className="preview-image" width={bitmap.width} height={bitmap.height}
+    const c = canvas.current;
+    if (c.drawn !== image) {
+      c.getContext('2d').putImageData(image, 0, 0);
+      c.drawn = image;
+      noteShown(port, revision);
+    }
+  }, [image]);
+  useLayoutEffect(() => {
+    const c = canvas.current;
+    if (!thumbnails.has(port)) thumbnails.set(port, new Set());
+    thumbnails.get(port).add(c);
+    return () => thumbnails.get(port)?.delete(c);
+  }, [port]);
+  return <canvas ref={canvas} className="preview-image" width={image.width} height={image.height}
     data-revision={revision} title={port} />;
+}
+
+// A thumbnail frame's pixels (gray, or blue-green-red; PROTOCOL.md) as RGBA for a canvas.
+export function thumbnailImage(header, payload) {
+  const { preview_width: width, preview_height: height, channels } = header;
+  const image = new ImageData(width, height);
+  const out = image.data;
+  for (let i = 0, o = 0; o < out.length; i += channels, o += 4) {
+    out[o] = payload[i + (channels === 3 ? 2 : 0)];
+    out[o + 1] = payload[i + (channels === 3 ? 1 : 0)];
+    out[o + 2] = payload[i];
+    out[o + 3] = 255;
+  }
+  return image;
+}
+
+// Draws a preview onto the port's thumbnails of its size; false when there is none (the page's
+// next render shows it).
+export function drawNow(port, image, revision) {
+  let drawn = false;
+  for (const c of thumbnails.get(port) || []) {
+    if (c.width !== image.width || c.height !== image.height) continue;
+    c.getContext('2d').putImageData(image, 0, 0);
+    c.drawn = image;
+    c.dataset.revision = revision;
+    drawn = true;
+  }
+  if (drawn) noteShown(port, revision);
+  return drawn;
 }
 
 function round(v) {

@@ -24,7 +24,7 @@ export function PropertiesPanel({ block, entry, net, request, onRename }) {
       {(entry?.properties || []).map((p) => (
         <div key={p.name} className="property" data-property={p.name}>
           <label title={p.doc}>{p.name} <i>{p.kind}</i></label>
-          <PropertyEditor prop={p} key={`${block.name}.${p.name}.${block.properties[p.name]}`}
+          <PropertyEditor prop={p} key={`${block.name}.${p.name}`}
             text={block.properties[p.name] ?? String(p.default ?? '')} onCommit={(t) => set(p.name, t)} request={request} />
           {errors[p.name] && <div className="error" data-testid="property-error">{errors[p.name]}</div>}
           <div className="doc">{p.doc}</div>
@@ -40,10 +40,29 @@ function PropertyEditor({ prop, text, onCommit, request }) {
   const [draft, setDraft] = useState(text);
   const [browsing, setBrowsing] = useState(false);
   const committed = useRef(text); // Enter then blur must not send the same value twice
-  const commit = (value = draft) => {
-    if (String(value) === committed.current) return;
-    committed.current = String(value);
-    onCommit(value);
+  const wanted = useRef(null); // the newest value not sent yet
+  const sending = useRef(false);
+  const dragging = useRef(false);
+  // A value set elsewhere (undo, another tab, the net's own state after a change) is shown, except
+  // under the user's hand on the slider.
+  useEffect(() => {
+    if (dragging.current) return;
+    committed.current = text;
+    setDraft(text);
+  }, [text]);
+  // One change in flight at a time; while it runs, newer values replace each other, so a slider
+  // dragged faster than the net runs sends only the newest value next, never a queue of stale ones.
+  const commit = async (value = draft) => {
+    wanted.current = String(value);
+    if (sending.current) return;
+    sending.current = true;
+    while (wanted.current !== null && wanted.current !== committed.current) {
+      const next = wanted.current;
+      committed.current = next;
+      await onCommit(next);
+    }
+    wanted.current = null;
+    sending.current = false;
   };
   const onKey = (e) => { if (e.key === 'Enter') commit(e.target.value); };
   if (prop.kind === 'bool') {
@@ -62,7 +81,12 @@ function PropertyEditor({ prop, text, onCommit, request }) {
   return (
     <div className="editor">
       {ranged && <input type="range" min={prop.min} max={prop.max} step={step} value={draft}
-        onChange={(e) => setDraft(e.target.value)} onPointerUp={(e) => commit(e.target.value)}
+        data-testid={`slider-${prop.name}`}
+        onPointerDown={() => {
+          dragging.current = true;
+          window.addEventListener('pointerup', () => { dragging.current = false; }, { once: true });
+        }}
+        onChange={(e) => { setDraft(e.target.value); commit(e.target.value); }}
         onKeyUp={(e) => commit(e.target.value)} />}
       <input type="text" className={numeric ? 'number' : prop.path ? 'path' : 'text'} value={draft}
         data-testid={`property-${prop.name}`} placeholder={prop.path ? 'file path' : ''}

@@ -1,11 +1,19 @@
 // The WebSocket link to `imagenets designer` (designer/PROTOCOL.md): requests with ids answered by
 // replies, pushes (net, event, files, error) and binary port-data frames.
+// A run sends a burst of pushes (an event per block, then the net's state); handled one by one, each
+// would re-render the page while the run's preview frame waits behind them. So `net` and `event`
+// pushes are held until the next display frame and handed on together (one render), and before
+// anything else that arrives, so the order of replies and pushes stays as sent. Port data is not
+// held: a preview is drawn as soon as it arrives.
+const held = new Set(['net', 'event']);
+
 export class Connection {
   constructor(url) {
     this.url = url;
     this.nextId = 1;
     this.pending = new Map();
     this.listeners = new Map();
+    this.holding = [];
     this.open = new Promise((resolve, reject) => {
       this.ws = new WebSocket(url);
       this.ws.binaryType = 'arraybuffer';
@@ -36,12 +44,32 @@ export class Connection {
     });
   }
 
+  // Hands on the held pushes now (also before a port-data frame is stored: it may belong to a net
+  // whose state is still held).
+  flush() {
+    const msgs = this.holding;
+    if (!msgs.length) return;
+    this.holding = [];
+    for (const msg of msgs) this.emit(msg.op, msg);
+  }
+
   receive(data) {
     if (data instanceof ArrayBuffer) {
       this.emit('data', decodePortData(data));
       return;
     }
     const msg = JSON.parse(data);
+    if (held.has(msg.op)) {
+      if (!this.holding.length) {
+        // A hidden page gets no display frames: the timeout hands the pushes on there.
+        const flush = () => { cancelAnimationFrame(frame); clearTimeout(timer); this.flush(); };
+        const frame = requestAnimationFrame(flush);
+        const timer = setTimeout(flush, 100);
+      }
+      this.holding.push(msg);
+      return;
+    }
+    this.flush();
     if (msg.op === 'reply' && this.pending.has(msg.id)) {
       const { resolve, reject } = this.pending.get(msg.id);
       this.pending.delete(msg.id);

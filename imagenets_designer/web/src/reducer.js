@@ -31,7 +31,6 @@ const without = (set, key) => { const n = new Set(set); n.delete(key); return n;
 // Another net opened (here or in another tab): nothing shown of the old one carries over, not
 // even to a block of the same name (previews, data, run results, selection).
 function forgetShown(state) {
-  Object.values(state.previews).forEach((v) => v?.bitmap?.close());
   return { ...state, previews: {}, watched: new Set(), cached: new Set(), running: new Set(), message: null,
     dataPort: null, fullData: null, subnet: null, search: null, refusal: null };
 }
@@ -71,7 +70,6 @@ export function reducer(state, action) {
     case 'closed': return { ...state, connected: false };
     case 'preview': {
       if (action.document !== undefined && action.document !== state.document) return state; // another net's value
-      state.previews[action.port]?.bitmap?.close();
       return { ...state, previews: { ...state.previews, [action.port]: action.value } };
     }
     case 'fullData': {

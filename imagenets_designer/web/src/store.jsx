@@ -1,6 +1,7 @@
 import React, { createContext, useContext, useEffect, useMemo, useReducer, useRef } from 'react';
 import { Connection } from './connection.js';
 import { split } from './flow.js';
+import { drawNow, thumbnailImage } from './Preview.jsx';
 import { initialState, reducer } from './reducer.js';
 
 const Store = createContext(null);
@@ -22,27 +23,35 @@ export function DesignerProvider({ children }) {
   }, [conn]);
 
   useEffect(() => {
+    // The document of the net state the page was last handed: a preview of another is not drawn
+    // ahead of the render (the reducer decides once the held state is handed on).
+    let shownDocument;
     const onData = ({ header, payload }) => {
       const data = { header, payload, value: header.value };
-      if (header.mode === 'full') { dispatch({ type: 'fullData', data }); return; }
-      const store = (value) => dispatch({ type: 'preview', port: header.port, document: header.document, value });
-      // Thumbnails are decoded off the main thread, then drawn straight onto the node's canvas.
-      if (header.format === 'jpeg' || header.format === 'png') {
-        createImageBitmap(new Blob([payload], { type: `image/${header.format}` }))
-          .then((bitmap) => store({ ...data, bitmap }))
-          .catch((err) => store({ header: { ...header, format: 'none', error: `cannot decode: ${err.message}` } }));
+      const hand = (action) => { conn.flush(); dispatch(action); };
+      if (header.mode === 'full') { hand({ type: 'fullData', data }); return; }
+      const store = (value) => hand({ type: 'preview', port: header.port, document: header.document, value });
+      if (header.format === 'pixels') {
+        // A thumbnail is drawn in this task, before the page re-renders, then kept for the render.
+        const image = thumbnailImage(header, payload);
+        if (header.document === undefined || header.document === shownDocument) drawNow(header.port, image, header.run ?? header.revision);
+        store({ ...data, image });
       } else {
         store(data);
       }
     };
     const offs = [
       conn.on('net', (net) => dispatch({ type: 'net', net })),
+      conn.on('net', (net) => { shownDocument = net.document; }),
       conn.on('event', (event) => dispatch({ type: 'event', event })),
       conn.on('error', (e) => tools.say(e.error, true)),
       conn.on('closed', () => { dispatch({ type: 'closed' }); tools.say('connection to the designer closed', true); }),
       conn.on('data', onData),
     ];
-    conn.request('hello').then((reply) => dispatch({ type: 'hello', registry: reply.registry, net: reply.net }))
+    conn.request('hello').then((reply) => {
+      shownDocument = reply.net.document;
+      dispatch({ type: 'hello', registry: reply.registry, net: reply.net });
+    })
       .catch((err) => tools.say(err.message, true));
     return () => offs.forEach((off) => off());
   }, [conn]);

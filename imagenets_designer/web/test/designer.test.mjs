@@ -697,6 +697,37 @@ test('the data window stays open beside the properties, resizes and shows each r
   assert.deepEqual(page.errors, []);
 });
 
+test('a property slider re-runs the net while it is dragged and ends at the value let go', { timeout: 300000 }, async (t) => {
+  const { page } = await designerOnNetCopy(t, browser, 'slider', 'threshold_demo.yaml');
+  await page.waitForSelector(nodeSel('threshold'), { timeout: LONG });
+  await click(page, '[data-testid="run"]');
+  await untilStats(page, 'the net ran', (s) => s.threshold.status === 'ok');
+  await watch(page, 'threshold.image');
+  await select(page, 'threshold');
+  const slider = await page.waitForSelector('[data-testid="slider-threshold"]', { visible: true, timeout: LONG });
+  const box = await slider.boundingBox();
+  const y = box.y + box.height / 2;
+  const shownBefore = await page.evaluate(() => (window.designerShown || []).length);
+  await page.mouse.move(box.x + 2, y);
+  await page.mouse.down();
+  // Each step waits for a new preview: the page follows the hand, not only the release.
+  for (let k = 1; k <= 3; ++k) {
+    const n = await page.evaluate(() => window.designerShown.length);
+    await page.mouse.move(box.x + (box.width * k) / 4, y, { steps: 3 });
+    await until(`a preview while dragging (step ${k})`, () => page.evaluate((n) =>
+      window.designerShown.slice(n).some((s) => s.port === 'threshold.image'), n));
+  }
+  const runsWhileDragging = (await stats(page, 'threshold')).runs;
+  await page.mouse.up();
+  const value = await slider.evaluate((s) => s.value);
+  await until('the value let go in the net', async () =>
+    (await page.$eval('[data-testid="property-threshold"]', (f) => f.value)) === value);
+  assert.ok(runsWhileDragging >= 4, `threshold ran ${runsWhileDragging} times by the time the slider was let go`);
+  const shown = await page.evaluate((n) => window.designerShown.slice(n).filter((s) => s.port === 'threshold.image').length, shownBefore);
+  assert.ok(shown >= 3, `${shown} previews shown while dragging`);
+  assert.deepEqual(page.errors, []);
+});
+
 test('on a 1366x768 screen a fitted net is readable and the minimap covers no node', { timeout: 300000 }, async (t) => {
   const dir = tempDir('readable');
   const config = copyConfig(dir);
