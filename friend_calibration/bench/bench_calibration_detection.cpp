@@ -85,34 +85,17 @@ Figures measure(const std::vector<CalibrationView>& views, const Detect& detect)
   return f;
 }
 
-}  // namespace
+struct Variant {
+  std::string name;
+  Detect detect;
+};
 
-// Arguments (optional): run only the variants whose name contains the first, and measure each the
-// second times (for a profiler: `perf record -D 6000 ... bench_calibration_detection default 20`).
-int main(int argc, char** argv) {
-  const char* only_variant = argc > 1 ? argv[1] : nullptr;
-  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 1;
-  const CalibrationViews data = renderCalibrationViews();
-  const std::vector<CalibrationView>& views = data.views;
-  int reflections = 0;
-  for (const auto& v : views) reflections += v.reflection;
-  std::printf("robust marker detection for the calibration: %zu views of 1024x768 (10 joint-method poses x left/right,\n"
-              "twice; %d with a spurious reflection), region of interest from the nominal prediction;\n"
-              "errors against the true marker pose in the camera frame; 'passed': reflection-disturbed detections\n"
-              "with a reprojection error within the calibration's gate (%.2f px)\n",
-              views.size(), reflections, FusionLimits().min_reprojection_error);
-  std::printf("%-48s %10s %12s | %-12s %7s %8s %8s | %-12s %-6s %8s\n", "sweep", "CPU ms/img", "pair wall ms",
-              "clean found", "mean mm", "mean deg", "worst mm", "refl. found", "passed", "worst mm");
-  struct Variant {
-    std::string name;
-    Detect detect;
-  };
-  // The net gets the image as the node receives it (a ROS message), converted before timing.
-  std::vector<sensor_msgs::ImageConstPtr> messages;
-  for (const auto& v : views) messages.push_back(imagenets::blocks::toImageMsg(v.image, "mono8", v.info.header));
+// The shipped net and variants of its feedback, each a pair of nets (left, right) kept in `nets`.
+std::vector<Variant> makeVariants(const std::vector<CalibrationView>& views,
+                                  const std::vector<sensor_msgs::ImageConstPtr>& messages,
+                                  std::vector<std::unique_ptr<CalibrationMarkerNet>>& nets) {
   // A variant: the shipped net with its threshold search changed and, if given, other region
   // margins tried (0 = the whole image); one net per camera, in parallel.
-  std::vector<std::unique_ptr<CalibrationMarkerNet>> nets;
   auto variant = [&](const std::function<void(imagenets::FeedbackSpec&)>& change, bool use_prediction,
                      std::vector<double> region_margins_px = {}) -> Detect {
     imagenets::NetSpec spec = CalibrationMarkerNet::specWithSearch([&](imagenets::NetSpec& search) {
@@ -173,6 +156,32 @@ int main(int argc, char** argv) {
   variants.push_back({"exhaustive 20..235 step 5", variant(only(every5), true)});
   variants.push_back({"fixed threshold 120 (no search)", variant(only({120}), true)});
   variants.push_back({"always sweep, whole image (no ROI, no pose hint)", variant(always_sweep, false)});
+  return variants;
+}
+
+}  // namespace
+
+// Arguments (optional): run only the variants whose name contains the first, and measure each the
+// second times (for a profiler: `perf record -D 6000 ... bench_calibration_detection default 20`).
+int main(int argc, char** argv) {
+  const char* only_variant = argc > 1 ? argv[1] : nullptr;
+  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 1;
+  const CalibrationViews data = renderCalibrationViews();
+  const std::vector<CalibrationView>& views = data.views;
+  int reflections = 0;
+  for (const auto& v : views) reflections += v.reflection;
+  std::printf("robust marker detection for the calibration: %zu views of 1024x768 (10 joint-method poses x left/right,\n"
+              "twice; %d with a spurious reflection), region of interest from the nominal prediction;\n"
+              "errors against the true marker pose in the camera frame; 'passed': reflection-disturbed detections\n"
+              "with a reprojection error within the calibration's gate (%.2f px)\n",
+              views.size(), reflections, FusionLimits().min_reprojection_error);
+  std::printf("%-48s %10s %12s | %-12s %7s %8s %8s | %-12s %-6s %8s\n", "sweep", "CPU ms/img", "pair wall ms",
+              "clean found", "mean mm", "mean deg", "worst mm", "refl. found", "passed", "worst mm");
+  // The net gets the image as the node receives it (a ROS message), converted before timing.
+  std::vector<sensor_msgs::ImageConstPtr> messages;
+  for (const auto& v : views) messages.push_back(imagenets::blocks::toImageMsg(v.image, "mono8", v.info.header));
+  std::vector<std::unique_ptr<CalibrationMarkerNet>> nets;
+  const std::vector<Variant> variants = makeVariants(views, messages, nets);
   auto print = [](const std::string& name, const Figures& f) {
     const int views = f.clean + f.disturbed;
     std::printf("%-48s %10.2f %12.2f | %4d / %-5d %7.3f %8.4f %8.3f | %4d / %-5d %-6d %8.3f\n", name.c_str(),
