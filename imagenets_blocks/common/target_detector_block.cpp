@@ -76,24 +76,12 @@ void TargetDetectorBlock::process(Context& ctx) {
   options.refine_edges = ctx.property<bool>("refine_edges");
   options.min_corners = ctx.property<int>("min_corners");
   Eigen::Isometry3d hint;
-  if (const auto pose_hint = ctx.input<geometry_msgs::PoseStamped>("pose_hint")) {
-    hint = marker::fromPoseMsg(pose_hint->pose);
-    options.pose_hint = &hint;
-  }
+  options.pose_hint = marker::inputPoseHint(ctx, &hint);
   target::TargetDetection d = target::detectTarget(gray, camera, *t, options);
   marker::shiftPoints(d, offset);
   ctx.output("detection", marker::toMsg(d, t->name, header));
-  if (!d.found) return;
-  auto confidence = boost::make_shared<std_msgs::Float64>();
-  confidence->data = d.confidence;
-  ctx.output("confidence", confidence);
-  auto error = boost::make_shared<std_msgs::Float64>();
-  error->data = d.reprojection_error;
-  ctx.output("reprojection_error", error);
-  auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
-  pose->header = header;
-  pose->pose = frames::toPose(d.pose);
-  ctx.output("pose", pose);
+  marker::outputConfidenceAndPose(ctx, d.found, d.confidence, d.pose, header);
+  marker::outputReprojectionError(ctx, d.found, d.reprojection_error);
 }
 
 }  // namespace blocks

@@ -35,6 +35,10 @@ class SquareMarkerDetector : public Block {
         .range(0.0, 1.0);
     addProperty<int>("refine_passes", 2, "sub-pixel edge refinement passes on the gray image (0: pixel corners)")
         .range(0, 10);
+    addProperty<int>("decimate", 1,
+                     "outlines of dark regions traced on every n-th pixel and row of the thresholded image "
+                     "(faster on large, noisy images; corners are still located on the gray image)")
+        .range(1, 8);
     addProperty<double>("min_inner_side_px", 0.0,
                         "inner corners join the pose fit only when the inner square's sides are this long (px; 0: always)")
         .range(0.0, 10000.0);
@@ -68,24 +72,18 @@ class SquareMarkerDetector : public Block {
     marker::DetectorOptions options;
     options.min_confidence = ctx.property<double>("min_confidence");
     options.refine_passes = ctx.property<int>("refine_passes");
+    options.decimate = ctx.property<int>("decimate");
     options.min_inner_side_px = ctx.property<double>("min_inner_side_px");
     options.edge_model = ctx.property<bool>("edge_model");
     options.edge_model_max_side_px = ctx.property<double>("edge_model_max_side_px");
     options.match_blur_px = checkedBlurs(ctx.property<std::vector<double>>("match_blur_px"));
     Eigen::Isometry3d hint;
-    if (const auto pose_hint = ctx.input<geometry_msgs::PoseStamped>("pose_hint")) {
-      hint = marker::fromPoseMsg(pose_hint->pose);
-      options.pose_hint = &hint;
-    }
+    options.pose_hint = marker::inputPoseHint(ctx, &hint);
     marker::Detection d = marker::detect(gray, binary, camera, *desc, options);
     marker::shiftPoints(d, offset);
     ctx.output("detection", marker::toMsg(d, *desc, header));
     marker::outputConfidenceAndPose(ctx, d, header);
-    if (d.found) {
-      auto error = boost::make_shared<std_msgs::Float64>();
-      error->data = d.reprojection_error;
-      ctx.output("reprojection_error", error);
-    }
+    marker::outputReprojectionError(ctx, d.found, d.reprojection_error);
   }
 
  private:

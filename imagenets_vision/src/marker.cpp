@@ -248,18 +248,12 @@ bool refineQuad(const cv::Mat& gray, const render::CameraModel& cam, const std::
   return true;
 }
 
-// Fits a blurred straight step edge, I = m + h erf(d / (sqrt(2) s)) with d the pixel's signed
-// distance to the line, to every pixel within `half_band` px of the edge from a to b (normalised,
-// the middle 70 % of it), by Gauss-Newton with Huber weights. Every pixel of the band counts, not
-// one crossing per profile: in dim, noisy images that is what locates the edge. The model is
-// symmetric about the line, so blur does not shift it. False if the fit does not settle.
-bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const cv::Point2d& a, const cv::Point2d& b,
-                    double half_band, cv::Vec3d* line, int* saturated) {
-  const double f = 0.5 * (cam.K(0, 0) + cam.K(1, 1));
-  const cv::Point2d t = (b - a) / cv::norm(b - a);
-  double theta = std::atan2(-t.x, t.y);
-  const cv::Point2d n0(std::cos(theta), std::sin(theta));  // the starting line's normal
-  double c = n0.dot(a);
+// The pixels of the band within `half_band` px of the edge from a to b (normalised), the middle
+// 70 % of it: their undistorted positions `q` and gray values `v`. `n0`, `c`: the edge's line
+// (n0 . q = c); `f`: focal length, normalised -> pixels. False if the band is empty or too large.
+bool edgeBandPixels(const cv::Mat& gray, const render::CameraModel& cam, const cv::Point2d& a, const cv::Point2d& b,
+                    const cv::Point2d& n0, double c, double f, double half_band, std::vector<cv::Point2d>* q,
+                    std::vector<double>* v) {
   // Candidate pixels: the box around the segment, widened by the band.
   const std::vector<cv::Point2d> ends = distort({a, b}, cam);
   const double pad = half_band + 2;
@@ -286,29 +280,33 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
   }
   const std::vector<cv::Point2d> q_all = normalise(px, cam);
   const double len = cv::norm(b - a);
-  std::vector<cv::Point2d> q;
-  std::vector<double> v;
+  const cv::Point2d t = (b - a) / len;
   for (size_t i = 0; i < q_all.size(); ++i) {
     const double u = (q_all[i] - a).dot(t) / len;
     const double d = f * (n0.dot(q_all[i]) - c);
-    if (u > 0.15 && u < 0.85 && std::abs(d) <= half_band) q.push_back(q_all[i]), v.push_back(value[i]);
+    if (u > 0.15 && u < 0.85 && std::abs(d) <= half_band) q->push_back(q_all[i]), v->push_back(value[i]);
   }
-  if (q.size() < 20) return false;
-  *saturated = static_cast<int>(std::count_if(v.begin(), v.end(), [](double x) { return x >= 254.5; }));
-  // Start: the two sides' means, a 1 px blur.
-  double lo = 0, hi = 0;
-  int n_lo = 0, n_hi = 0;
-  for (size_t i = 0; i < q.size(); ++i) {
-    const double d = f * (n0.dot(q[i]) - c);
-    if (d < 0) lo += v[i], ++n_lo;
-    else hi += v[i], ++n_hi;
-  }
-  if (n_lo < 5 || n_hi < 5) return false;
-  double m = 0.5 * (lo / n_lo + hi / n_hi), h = 0.5 * (hi / n_hi - lo / n_lo), s = 1.0;
-  if (std::abs(h) < 3) return false;
+  return true;
+}
+
+// The blurred step edge's parameters: the line n(theta) . q = c, the mid-level m, the half step h
+// and the blur s (pixels).
+struct EdgeModel {
+  double theta, c, m, h, s;
+};
+
+// Fits `model` to the band's pixels (q, v) by Gauss-Newton with Huber weights, the threshold from
+// the residuals' robust spread. A saturated pixel (over-exposed paper) only says the model is at
+// least as bright: clipping would otherwise pull the edge towards the dark side. `line_scale`:
+// pixels the line's end moves per radian (convergence test). False if a step is not finite.
+bool fitEdgeModel(const std::vector<cv::Point2d>& q, const std::vector<double>& v, double f, double line_scale,
+                  EdgeModel* model) {
+  double& theta = model->theta;
+  double& c = model->c;
+  double& m = model->m;
+  double& h = model->h;
+  double& s = model->s;
   double lambda = 1e-3;
-  // A saturated pixel (over-exposed paper) only says the model is at least as bright: clipping
-  // would otherwise pull the edge towards the dark side.
   auto residual = [](double value, double model) { return value >= 254.5 ? std::min(0.0, value - model) : value - model; };
   auto huberCost = [](double r, double k) {
     r = std::abs(r);
@@ -324,7 +322,6 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
   };
   for (int iter = 0; iter < 30; ++iter) {
     const cv::Point2d n(std::cos(theta), std::sin(theta)), dn(-std::sin(theta), std::cos(theta));
-    // Huber threshold from the residuals' robust spread (noise, pattern cells near the band).
     std::vector<double> abs_r(q.size());
     for (size_t i = 0; i < q.size(); ++i) {
       abs_r[i] = std::abs(residual(v[i], m + h * std::erf(f * (n.dot(q[i]) - c) / (M_SQRT2 * s))));
@@ -359,18 +356,50 @@ bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const c
         lambda = std::max(1e-6, lambda / 4);
         improved = true;
         // Converged once the line moves by less than a thousandth of a pixel.
-        if (f * (std::abs(dx(1)) + std::abs(dx(0)) * (cv::norm(0.5 * (a + b)) + len)) < 1e-3) iter = 30;
+        if (f * (std::abs(dx(1)) + std::abs(dx(0)) * line_scale) < 1e-3) iter = 30;
       } else {
         lambda *= 8;
       }
     }
     if (!improved) break;
   }
-  // Settled near where it started, with a plausible blur: otherwise keep the profile estimate.
+  return true;
+}
+
+// Fits a blurred straight step edge, I = m + h erf(d / (sqrt(2) s)) with d the pixel's signed
+// distance to the line, to every pixel within `half_band` px of the edge from a to b (normalised,
+// the middle 70 % of it), by Gauss-Newton with Huber weights. Every pixel of the band counts, not
+// one crossing per profile: in dim, noisy images that is what locates the edge. The model is
+// symmetric about the line, so blur does not shift it. False if the fit does not settle.
+bool fitBlurredEdge(const cv::Mat& gray, const render::CameraModel& cam, const cv::Point2d& a, const cv::Point2d& b,
+                    double half_band, cv::Vec3d* line, int* saturated) {
+  const double f = 0.5 * (cam.K(0, 0) + cam.K(1, 1));
+  const cv::Point2d t = (b - a) / cv::norm(b - a);
+  EdgeModel model;
+  model.theta = std::atan2(-t.x, t.y);
+  const cv::Point2d n0(std::cos(model.theta), std::sin(model.theta));  // the starting line's normal
+  model.c = n0.dot(a);
+  std::vector<cv::Point2d> q;
+  std::vector<double> v;
+  if (!edgeBandPixels(gray, cam, a, b, n0, model.c, f, half_band, &q, &v) || q.size() < 20) return false;
+  *saturated = static_cast<int>(std::count_if(v.begin(), v.end(), [](double x) { return x >= 254.5; }));
+  // Start: the two sides' means, a 1 px blur.
+  double lo = 0, hi = 0;
+  int n_lo = 0, n_hi = 0;
+  for (size_t i = 0; i < q.size(); ++i) {
+    const double d = f * (n0.dot(q[i]) - model.c);
+    if (d < 0) lo += v[i], ++n_lo;
+    else hi += v[i], ++n_hi;
+  }
+  if (n_lo < 5 || n_hi < 5) return false;
+  model.m = 0.5 * (lo / n_lo + hi / n_hi), model.h = 0.5 * (hi / n_hi - lo / n_lo), model.s = 1.0;
+  if (std::abs(model.h) < 3) return false;
   const cv::Point2d mid = 0.5 * (a + b);
-  const double moved = f * std::abs(cv::Point2d(std::cos(theta), std::sin(theta)).dot(mid) - c);
-  if (!(s > 0.2 && s < 6 && moved < 1.5 && std::abs(h) >= 3)) return false;
-  *line = cv::Vec3d(std::cos(theta), std::sin(theta), -c);
+  if (!fitEdgeModel(q, v, f, cv::norm(mid) + cv::norm(b - a), &model)) return false;
+  // Settled near where it started, with a plausible blur: otherwise keep the profile estimate.
+  const double moved = f * std::abs(cv::Point2d(std::cos(model.theta), std::sin(model.theta)).dot(mid) - model.c);
+  if (!(model.s > 0.2 && model.s < 6 && moved < 1.5 && std::abs(model.h) >= 3)) return false;
+  *line = cv::Vec3d(std::cos(model.theta), std::sin(model.theta), -model.c);
   return true;
 }
 
@@ -567,8 +596,10 @@ bool refineSquareEdges(const cv::Mat& gray, const render::CameraModel& camera, c
   return true;
 }
 
-Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::CameraModel& camera,
-                 const MarkerDescription& marker, const DetectorOptions& options) {
+namespace {
+
+void checkDetectInputs(const cv::Mat& gray, const cv::Mat& binary, const render::CameraModel& camera,
+                       const MarkerDescription& marker) {
   if (gray.empty() || gray.type() != CV_8UC1) throw std::invalid_argument("gray image must be a non-empty mono8 image");
   if (binary.type() != CV_8UC1 || binary.size() != gray.size()) {
     throw std::invalid_argument("thresholded image must be mono8 and of the gray image's size");
@@ -579,15 +610,52 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
                                 std::to_string(camera.height));
   }
   if (marker.pattern.empty()) throw std::invalid_argument("marker '" + marker.name + "' has no pattern");
-  Detection result;
+}
 
+// How finely the dark regions are traced: options.decimate, unless the pose hint says the marker's
+// border is narrow in the image (under kMinDecimatedBorderPx at that scale: far, or seen steeply).
+constexpr double kMinDecimatedBorderPx = 3;
+int decimation(const render::CameraModel& camera, const MarkerDescription& marker, const DetectorOptions& options) {
+  const int d = std::max(1, options.decimate);
+  if (d == 1 || !options.pose_hint) return d;
+  std::vector<cv::Point2d> outer;
+  const std::vector<cv::Point3d> defined = marker.definedPoints();
+  for (int j = 0; j < 4; ++j) {
+    const Eigen::Vector3d p = *options.pose_hint * Eigen::Vector3d(defined[j].x, defined[j].y, defined[j].z);
+    if (p.z() <= 0) return 1;
+    outer.push_back(camera.project(p));
+  }
+  // The border's narrowest width: the quadrilateral's (a parallelogram's area over its longest
+  // side), scaled by the border's share of the marker; a steep view narrows it in any direction.
+  const double area = std::abs(cv::contourArea(std::vector<cv::Point2f>(outer.begin(), outer.end())));
+  return area / sideRange(outer).second * marker.border >= kMinDecimatedBorderPx * d ? d : 1;
+}
+
+// The candidate that matches the pattern best: every dark region's outline that approximates a
+// convex quadrilateral, its edges located on the gray image, its inner area matched; when none
+// matches the sharp pattern, those that looked a little like it matched again, blurred.
+// `candidates`: how many quadrilaterals were examined.
+Candidate bestCandidate(const cv::Mat& gray, const cv::Mat& binary, const render::CameraModel& camera,
+                        const MarkerDescription& marker, const DetectorOptions& options, int* candidates) {
   cv::Mat pattern_cells;
   cv::resize(marker.pattern, pattern_cells, cv::Size(options.pattern_cells, options.pattern_cells), 0, 0,
              cv::INTER_AREA);
   pattern_cells.convertTo(pattern_cells, CV_64F);
 
-  // Dark regions (the border is below the threshold) and their outer boundaries.
-  cv::Mat dark = binary == 0;
+  // Dark regions (the border is below the threshold) and their outer boundaries; with `decimate`,
+  // of every d-th pixel of every d-th row (the rough corners are refined on the gray image anyway).
+  const int d = decimation(camera, marker, options);
+  cv::Mat dark;
+  if (d > 1) {
+    dark.create((binary.rows + d - 1) / d, (binary.cols + d - 1) / d, CV_8UC1);
+    for (int y = 0; y < dark.rows; ++y) {
+      const uchar* in = binary.ptr<uchar>(y * d);
+      uchar* out = dark.ptr<uchar>(y);
+      for (int x = 0; x < dark.cols; ++x) out[x] = in[x * d] == 0 ? 255 : 0;
+    }
+  } else {
+    dark = binary == 0;
+  }
   std::vector<std::vector<cv::Point>> contours;
   std::vector<cv::Vec4i> hierarchy;
   cv::findContours(dark, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
@@ -595,13 +663,14 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   Candidate best;
   best.confidence = -1;
   std::vector<Candidate> rescuable;
+  const cv::Rect2f inside(3.0f / d, 3.0f / d, (gray.cols - 6.0f) / d, (gray.rows - 6.0f) / d);
   for (size_t ci = 0; ci < contours.size(); ++ci) {
     if (hierarchy[ci][3] >= 0) continue;  // a hole's boundary, not a region's outline
-    const auto corners = convexQuadrilateral(contours[ci], 0.05, options.min_side_px,
-                                             cv::Rect2f(3, 3, gray.cols - 6, gray.rows - 6));
+    const auto corners = convexQuadrilateral(contours[ci], 0.05, options.min_side_px / d, inside);
     if (!corners) continue;
-    ++result.candidates;
-    const std::vector<cv::Point2d> quad(corners->begin(), corners->end());
+    ++*candidates;
+    std::vector<cv::Point2d> quad;
+    for (const cv::Point2f& c : *corners) quad.emplace_back(c.x * d, c.y * d);
 
     Candidate cand;
     std::vector<cv::Point2d> outer_px = quad;
@@ -609,6 +678,15 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
     for (int pass = 0; pass < options.refine_passes && refined; ++pass) {
       refined = refineQuad(gray, camera, outer_px, pass == 0 ? 4.0 : 2.5, &cand.outer_norm);
       if (refined) outer_px = distort(cand.outer_norm, camera);
+      // Most quadrilaterals are something else (a part of the robot, a shadow): once located
+      // roughly, one whose pattern does not look like the marker's at all (< 0.1, where another
+      // pattern matches ~0.1, the marker >= 0.83) is dropped before the finer passes. Not those
+      // the blurred match may still take, whose sharp match is low anyway.
+      if (refined && pass == 0 && options.refine_passes > 1 &&
+          (options.match_blur_px.empty() || sideRange(outer_px).first >= kBlurMattersBelowPx)) {
+        matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, nullptr, {}, &cand);
+        if (cand.confidence < 0.1) refined = false;
+      }
     }
     if (!refined) continue;
     // The limit holds for the located square too: a speck whose contour passed it can shrink to
@@ -623,7 +701,6 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
       rescuable.push_back(cand);
     }
   }
-  // No candidate matches the sharp pattern: match those that looked a little like it again, blurred.
   if (best.confidence < options.min_confidence && !rescuable.empty()) {
     const MatchTexture blurred(marker);
     const double blurred_min = std::max(options.min_confidence, kBlurredMatchMinConfidence);
@@ -633,6 +710,91 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
       if (cand.confidence >= blurred_min && cand.confidence > best.confidence) best = cand;
     }
   }
+  return best;
+}
+
+// The inner corners (normalised): from the homography of the outer ones (`outer`, in marker
+// order), their edges then located too. `inner_side_px`: the shortest side of the inner square in
+// the image. False if an edge could not be located (the homography's corners are kept).
+bool innerCorners(const cv::Mat& gray, const render::CameraModel& camera, const MarkerDescription& marker,
+                  const std::vector<cv::Point2d>& outer, int refine_passes, std::vector<cv::Point2d>* inner_norm,
+                  double* inner_side_px) {
+  const std::vector<cv::Point3d> defined = marker.definedPoints();
+  std::vector<cv::Point2f> plane_outer, img_outer(outer.begin(), outer.end());
+  for (int j = 0; j < 4; ++j) plane_outer.emplace_back(defined[j].x, defined[j].y);
+  const cv::Mat H = cv::getPerspectiveTransform(plane_outer, img_outer);
+  std::vector<cv::Point2d> plane_inner;
+  for (int j = 4; j < 8; ++j) plane_inner.emplace_back(defined[j].x, defined[j].y);
+  cv::perspectiveTransform(plane_inner, *inner_norm, H);
+  bool refined = true;
+  std::vector<cv::Point2d> inner_px = distort(*inner_norm, camera), refined_inner;
+  for (int pass = 0; pass < refine_passes && refined; ++pass) {
+    refined = refineQuad(gray, camera, inner_px, pass == 0 ? 2.5 : 1.5, &refined_inner);
+    if (refined) inner_px = distort(refined_inner, camera), *inner_norm = refined_inner;
+  }
+  *inner_side_px = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 4; ++k) *inner_side_px = std::min(*inner_side_px, cv::norm(inner_px[k] - inner_px[(k + 1) % 4]));
+  return refined;
+}
+
+// The pose from the 8 points (`image_norm`: outer then inner corners, normalised; the inner ones
+// repeated `inner_weight` times in the fit when `use_inner`): IPPE's solutions, each refined by
+// Levenberg-Marquardt; the lower RMS reprojection error wins, or, when both fit about equally well,
+// the one closer to the hint. False if IPPE gives none.
+bool fitPose(const MarkerDescription& marker, const std::vector<cv::Point2d>& image_norm, bool use_inner,
+             const DetectorOptions& options, double focal_px, Detection* result) {
+  const std::vector<cv::Point3d> defined = marker.definedPoints();
+  std::vector<cv::Point3d> fit_object(defined.begin(), defined.begin() + 4);
+  std::vector<cv::Point2d> fit_image(image_norm.begin(), image_norm.begin() + 4);
+  for (int w = 0; use_inner && w < std::max(1, options.inner_weight); ++w) {
+    fit_object.insert(fit_object.end(), defined.begin() + 4, defined.end());
+    fit_image.insert(fit_image.end(), image_norm.begin() + 4, image_norm.end());
+  }
+  const cv::Mat I = cv::Mat::eye(3, 3, CV_64F);
+  std::vector<cv::Mat> rvecs, tvecs;
+  const int n = cv::solvePnPGeneric(fit_object, fit_image, I, cv::noArray(), rvecs, tvecs, false, cv::SOLVEPNP_IPPE);
+  if (n == 0) return false;
+  std::vector<Eigen::Isometry3d> poses;
+  std::vector<double> errors;
+  for (int s = 0; s < n; ++s) {
+    cv::Mat rvec = rvecs[s].clone(), tvec = tvecs[s].clone();
+    cv::solvePnPRefineLM(fit_object, fit_image, I, cv::noArray(), rvec, tvec,
+                         cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 50, 1e-12));
+    // RMS over the points of the fit (each once): the outer corners alone when the inner ones were left out.
+    const std::vector<cv::Point3d> fitted(defined.begin(), defined.begin() + (use_inner ? 8 : 4));
+    std::vector<cv::Point2d> reproj;
+    cv::projectPoints(fitted, rvec, tvec, I, cv::noArray(), reproj);
+    double sq = 0;
+    for (size_t i = 0; i < reproj.size(); ++i) {
+      const cv::Point2d e = reproj[i] - image_norm[i];
+      sq += e.dot(e);
+    }
+    poses.push_back(toIsometry(cv::Vec3d(rvec), cv::Vec3d(tvec)));
+    errors.push_back(focal_px * std::sqrt(sq / reproj.size()));
+  }
+  int chosen = 0;
+  if (n > 1) {
+    chosen = errors[1] < errors[0] ? 1 : 0;
+    const double lo = std::min(errors[0], errors[1]), hi = std::max(errors[0], errors[1]);
+    if (options.pose_hint && hi < options.ambiguity_ratio * std::max(lo, 1e-9)) {
+      // Ambiguous: keep the solution whose orientation is closer to the hint (temporal consistency).
+      chosen = rotationAngle(poses[0], *options.pose_hint) <= rotationAngle(poses[1], *options.pose_hint) ? 0 : 1;
+    }
+  }
+  result->pose = poses[chosen];
+  result->reprojection_error = errors[chosen];
+  result->alt_pose = n > 1 ? poses[1 - chosen] : poses[chosen];
+  result->alt_reprojection_error = n > 1 ? errors[1 - chosen] : errors[chosen];
+  return true;
+}
+
+}  // namespace
+
+Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::CameraModel& camera,
+                 const MarkerDescription& marker, const DetectorOptions& options) {
+  checkDetectInputs(gray, binary, camera, marker);
+  Detection result;
+  Candidate best = bestCandidate(gray, binary, camera, marker, options, &result.candidates);
   if (best.confidence < options.min_confidence || best.outer_norm.empty()) {
     result.confidence = std::max(0.0, best.confidence);
     return result;
@@ -651,25 +813,9 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
   std::vector<cv::Point2d> outer(4);
   for (int j = 0; j < 4; ++j) outer[j] = best.outer_norm[(j - best.rotation + 8) % 4];
 
-  // Inner corners: start from the homography of the outer ones, then refine their edges too.
-  const std::vector<cv::Point3d> defined = marker.definedPoints();
-  std::vector<cv::Point2f> plane_outer, img_outer(outer.begin(), outer.end());
-  for (int j = 0; j < 4; ++j) plane_outer.emplace_back(defined[j].x, defined[j].y);
-  const cv::Mat H = cv::getPerspectiveTransform(plane_outer, img_outer);
-  std::vector<cv::Point2d> plane_inner, inner_norm;
-  for (int j = 4; j < 8; ++j) plane_inner.emplace_back(defined[j].x, defined[j].y);
-  cv::perspectiveTransform(plane_inner, inner_norm, H);
-  bool inner_refined = true;
-  double inner_side_px = 0;  // the shortest side of the inner square in the image
-  {
-    std::vector<cv::Point2d> inner_px = distort(inner_norm, camera), refined_inner;
-    for (int pass = 0; pass < options.refine_passes && inner_refined; ++pass) {
-      inner_refined = refineQuad(gray, camera, inner_px, pass == 0 ? 2.5 : 1.5, &refined_inner);
-      if (inner_refined) inner_px = distort(refined_inner, camera), inner_norm = refined_inner;
-    }
-    inner_side_px = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 4; ++k) inner_side_px = std::min(inner_side_px, cv::norm(inner_px[k] - inner_px[(k + 1) % 4]));
-  }
+  std::vector<cv::Point2d> inner_norm;
+  double inner_side_px = 0;
+  const bool inner_refined = innerCorners(gray, camera, marker, outer, options.refine_passes, &inner_norm, &inner_side_px);
   // A small inner square (far away, seen steeply) lies among the pattern's cells: its blurred edges
   // have no bright plateau and its corners are off by up to a pixel. Then only the outer corners fit.
   const bool use_inner =
@@ -678,52 +824,11 @@ Detection detect(const cv::Mat& gray, const cv::Mat& binary, const render::Camer
 
   std::vector<cv::Point2d> image_norm(outer);
   image_norm.insert(image_norm.end(), inner_norm.begin(), inner_norm.end());
-  // The pose fit: the inner corners repeated `inner_weight` times (a weighted least squares).
-  std::vector<cv::Point3d> fit_object(defined.begin(), defined.begin() + 4);
-  std::vector<cv::Point2d> fit_image(outer);
-  for (int w = 0; use_inner && w < std::max(1, options.inner_weight); ++w) {
-    fit_object.insert(fit_object.end(), defined.begin() + 4, defined.end());
-    fit_image.insert(fit_image.end(), inner_norm.begin(), inner_norm.end());
-  }
-  const cv::Mat I = cv::Mat::eye(3, 3, CV_64F);
-  std::vector<cv::Mat> rvecs, tvecs;
-  const int n = cv::solvePnPGeneric(fit_object, fit_image, I, cv::noArray(), rvecs, tvecs, false, cv::SOLVEPNP_IPPE);
-  if (n == 0) return result;
   const double f = 0.5 * (camera.K(0, 0) + camera.K(1, 1));  // normalised -> pixel error scale
-  std::vector<Eigen::Isometry3d> poses;
-  std::vector<double> errors;
-  for (int s = 0; s < n; ++s) {
-    cv::Mat rvec = rvecs[s].clone(), tvec = tvecs[s].clone();
-    cv::solvePnPRefineLM(fit_object, fit_image, I, cv::noArray(), rvec, tvec,
-                         cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 50, 1e-12));
-    // RMS over the points of the fit (each once): the outer corners alone when the inner ones were left out.
-    const std::vector<cv::Point3d> fitted(defined.begin(), defined.begin() + (use_inner ? 8 : 4));
-    std::vector<cv::Point2d> reproj;
-    cv::projectPoints(fitted, rvec, tvec, I, cv::noArray(), reproj);
-    double sq = 0;
-    for (size_t i = 0; i < reproj.size(); ++i) {
-      const cv::Point2d e = reproj[i] - image_norm[i];
-      sq += e.dot(e);
-    }
-    poses.push_back(toIsometry(cv::Vec3d(rvec), cv::Vec3d(tvec)));
-    errors.push_back(f * std::sqrt(sq / reproj.size()));
-  }
-  int chosen = 0;
-  if (n > 1) {
-    chosen = errors[1] < errors[0] ? 1 : 0;
-    const double lo = std::min(errors[0], errors[1]), hi = std::max(errors[0], errors[1]);
-    if (options.pose_hint && hi < options.ambiguity_ratio * std::max(lo, 1e-9)) {
-      // Ambiguous: keep the solution whose orientation is closer to the hint (temporal consistency).
-      chosen = rotationAngle(poses[0], *options.pose_hint) <= rotationAngle(poses[1], *options.pose_hint) ? 0 : 1;
-    }
-  }
+  if (!fitPose(marker, image_norm, use_inner, options, f, &result)) return result;
   result.found = true;
   result.confidence = best.confidence;
   result.rotation = best.rotation;
-  result.pose = poses[chosen];
-  result.reprojection_error = errors[chosen];
-  result.alt_pose = n > 1 ? poses[1 - chosen] : poses[chosen];
-  result.alt_reprojection_error = n > 1 ? errors[1 - chosen] : errors[chosen];
   const std::vector<cv::Point2d> px = distort(image_norm, camera);
   for (int i = 0; i < 8; ++i) result.points[i] = px[i];
   return result;

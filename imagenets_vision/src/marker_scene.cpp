@@ -1,5 +1,6 @@
 #include "imagenets/vision/marker_scene.h"
 
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <tuple>
@@ -25,7 +26,30 @@ cv::Mat renderView(const render::Renderer& renderer, render::Plane plane, const 
   options.noise_sigma = view.noise;
   options.seed = view.seed;
   if (truth) *truth = pose;
-  return renderer.render(scene, options);
+  cv::Mat image = renderer.render(scene, options);
+  if (view.highlight > 0 && pose.translation().z() > 0.05) {
+    const double side_px = renderer.camera().K(0, 0) * view.marker_size / pose.translation().z();
+    addSpecularHighlight(image, renderer.camera().project(pose.translation()) + view.highlight_offset * side_px,
+                         view.highlight_sigma * side_px, view.highlight);
+  }
+  return image;
+}
+
+void addSpecularHighlight(cv::Mat& image, const cv::Point2d& centre, double sigma, double amplitude) {
+  const int r = static_cast<int>(3 * sigma) + 1;
+  const cv::Rect roi = cv::Rect(static_cast<int>(centre.x) - r, static_cast<int>(centre.y) - r, 2 * r + 1, 2 * r + 1) &
+                       cv::Rect(0, 0, image.cols, image.rows);
+  for (int y = roi.y; y < roi.y + roi.height; ++y) {
+    uchar* row = image.ptr<uchar>(y);
+    for (int x = roi.x; x < roi.x + roi.width; ++x) {
+      const double d2 = (x - centre.x) * (x - centre.x) + (y - centre.y) * (y - centre.y);
+      const double add = amplitude * std::exp(-d2 / (2 * sigma * sigma));
+      for (int ch = 0; ch < image.channels(); ++ch) {
+        uchar& v = row[x * image.channels() + ch];
+        v = cv::saturate_cast<uchar>(v + add);
+      }
+    }
+  }
 }
 
 std::shared_ptr<const render::Renderer> sharedRenderer(const render::CameraModel& camera, int supersampling) {

@@ -101,6 +101,105 @@ const char* kTypes = "square_marker, apriltag, charuco";
 
 }  // namespace
 
+namespace {
+
+// The keys of each target type (the file's `type`), into `t`; Keys names the file and key of a bad value.
+void loadSquareMarker(Keys& keys, const std::string& yaml_path, TargetDescription& t) {
+  const boost::filesystem::path marker = keys.text("marker");
+  t.marker_file = (marker.is_absolute() ? marker : boost::filesystem::absolute(yaml_path).parent_path() / marker)
+                      .lexically_normal()
+                      .string();
+  try {
+    t.marker = marker::MarkerDescription::loadCached(t.marker_file);
+  } catch (const std::exception& e) {
+    keys.fail("marker", e.what());
+  }
+  t.size = t.marker->size;
+  t.margin = t.marker->margin * t.marker->size;
+}
+
+void loadAprilTag(Keys& keys, TargetDescription& t) {
+  t.family = keys.text("family");
+  detail::FamilyInfo info;
+  std::string known;
+  if (!detail::aprilTagFamily(t.family, &info, &known)) keys.fail("family", "'" + t.family + "' is not an AprilTag family libapriltag has (" + known + ")");
+  t.tag_cells = info.border_cells;
+  t.family_codes = info.codes;
+  t.size = keys.number("size", 0.0, 10.0);
+  const int one = 1;
+  t.rows = keys.integer("rows", 1, 100, &one);
+  t.cols = keys.integer("cols", 1, 100, &one);
+  t.id = keys.integer("id", 0, 1 << 30);
+  const int last = t.id + t.rows * t.cols - 1;
+  if (last >= info.codes) {
+    keys.fail("id", (t.rows * t.cols > 1 ? "the grid's ids " + std::to_string(t.id) + ".." + std::to_string(last)
+                                         : std::to_string(t.id)) +
+                        " out of range: family " + t.family + " has ids 0.." + std::to_string(info.codes - 1));
+  }
+  const double cell = t.size / info.border_cells;
+  // libapriltag needs the ring around each detected square (white, or the data bits of the
+  // families whose border is inside): neighbours and the margin must leave room for it.
+  const double ring = 0.5 * (info.total_cells - info.border_cells) * cell;
+  if (t.rows * t.cols > 1) {
+    t.spacing = keys.number("spacing", 0.0, 10.0);
+    if (t.spacing < 2 * ring - 1e-12) {
+      std::ostringstream os;
+      os << t.spacing << " m leaves no room for the tags' " << info.total_cells - info.border_cells
+         << " cells around their squares (at least " << 2 * ring << " m for " << t.family << " of size " << t.size << ")";
+      keys.fail("spacing", os.str());
+    }
+  } else if (keys.has("spacing")) {
+    keys.number("spacing", -1.0, 10.0);  // harmless on one tag
+  }
+  const double default_margin = std::max(ring + cell, 0.25 * t.size);
+  t.margin = keys.number("margin", -1e-12, 10.0, &default_margin);
+  if (t.margin < ring - 1e-12) {
+    std::ostringstream os;
+    os << t.margin << " m is narrower than the ring libapriltag needs around the squares (" << ring << " m)";
+    keys.fail("margin", os.str());
+  }
+}
+
+void loadCharuco(Keys& keys, TargetDescription& t) {
+  t.dictionary = keys.text("dictionary");
+  int markers = 0;
+  std::string known;
+  if (!detail::charucoDictionary(t.dictionary, &markers, &known)) {
+    keys.fail("dictionary", "'" + t.dictionary + "' is not an OpenCV aruco dictionary (" + known + ")");
+  }
+  t.squares_x = keys.integer("squares_x", 2, 1000);
+  t.squares_y = keys.integer("squares_y", 2, 1000);
+  t.square_size = keys.number("square_size", 0.0, 10.0);
+  t.marker_size = keys.number("marker_size", 0.0, 10.0);
+  if (t.marker_size >= t.square_size) {
+    std::ostringstream os;
+    os << t.marker_size << " m does not fit in its square of " << t.square_size << " m";
+    keys.fail("marker_size", os.str());
+  }
+  const int needed = t.squares_x * t.squares_y / 2;
+  if (needed > markers) {
+    keys.fail("dictionary", t.dictionary + " has " + std::to_string(markers) + " markers, the " +
+                                std::to_string(t.squares_x) + " x " + std::to_string(t.squares_y) + " board needs " +
+                                std::to_string(needed));
+  }
+  // The printed board's size, when given, must hold the squares.
+  for (const char* key : {"width", "height"}) {
+    if (!keys.has(key)) continue;
+    const double v = keys.number(key, 0.0, 100.0);
+    const int n = std::string(key) == "width" ? t.squares_x : t.squares_y;
+    if (n * t.square_size > v + 1e-9) {
+      std::ostringstream os;
+      os << v << " m is smaller than its " << n << " squares of " << t.square_size << " m (" << n * t.square_size << " m)";
+      keys.fail(key, os.str());
+    }
+  }
+  const double default_margin = 0.5 * t.square_size;
+  t.margin = keys.number("margin", -1e-12, 10.0, &default_margin);
+  t.size = t.square_size;
+}
+
+}  // namespace
+
 TargetDescription TargetDescription::load(const std::string& yaml_path) {
   YAML::Node root;
   try {
@@ -120,95 +219,13 @@ TargetDescription TargetDescription::load(const std::string& yaml_path) {
   t.name = keys.text("name", &stem);
   if (type == "square_marker") {
     t.type = TargetType::SquareMarker;
-    const boost::filesystem::path marker = keys.text("marker");
-    t.marker_file = (marker.is_absolute() ? marker : boost::filesystem::absolute(yaml_path).parent_path() / marker)
-                        .lexically_normal()
-                        .string();
-    try {
-      t.marker = marker::MarkerDescription::loadCached(t.marker_file);
-    } catch (const std::exception& e) {
-      keys.fail("marker", e.what());
-    }
-    t.size = t.marker->size;
-    t.margin = t.marker->margin * t.marker->size;
+    loadSquareMarker(keys, yaml_path, t);
   } else if (type == "apriltag") {
     t.type = TargetType::AprilTag;
-    t.family = keys.text("family");
-    detail::FamilyInfo info;
-    std::string known;
-    if (!detail::aprilTagFamily(t.family, &info, &known)) keys.fail("family", "'" + t.family + "' is not an AprilTag family libapriltag has (" + known + ")");
-    t.tag_cells = info.border_cells;
-    t.family_codes = info.codes;
-    t.size = keys.number("size", 0.0, 10.0);
-    const int one = 1;
-    t.rows = keys.integer("rows", 1, 100, &one);
-    t.cols = keys.integer("cols", 1, 100, &one);
-    t.id = keys.integer("id", 0, 1 << 30);
-    const int last = t.id + t.rows * t.cols - 1;
-    if (last >= info.codes) {
-      keys.fail("id", (t.rows * t.cols > 1 ? "the grid's ids " + std::to_string(t.id) + ".." + std::to_string(last)
-                                           : std::to_string(t.id)) +
-                          " out of range: family " + t.family + " has ids 0.." + std::to_string(info.codes - 1));
-    }
-    const double cell = t.size / info.border_cells;
-    // libapriltag needs the ring around each detected square (white, or the data bits of the
-    // families whose border is inside): neighbours and the margin must leave room for it.
-    const double ring = 0.5 * (info.total_cells - info.border_cells) * cell;
-    if (t.rows * t.cols > 1) {
-      t.spacing = keys.number("spacing", 0.0, 10.0);
-      if (t.spacing < 2 * ring - 1e-12) {
-        std::ostringstream os;
-        os << t.spacing << " m leaves no room for the tags' " << info.total_cells - info.border_cells
-           << " cells around their squares (at least " << 2 * ring << " m for " << t.family << " of size " << t.size << ")";
-        keys.fail("spacing", os.str());
-      }
-    } else if (keys.has("spacing")) {
-      keys.number("spacing", -1.0, 10.0);  // harmless on one tag
-    }
-    const double default_margin = std::max(ring + cell, 0.25 * t.size);
-    t.margin = keys.number("margin", -1e-12, 10.0, &default_margin);
-    if (t.margin < ring - 1e-12) {
-      std::ostringstream os;
-      os << t.margin << " m is narrower than the ring libapriltag needs around the squares (" << ring << " m)";
-      keys.fail("margin", os.str());
-    }
+    loadAprilTag(keys, t);
   } else if (type == "charuco") {
     t.type = TargetType::Charuco;
-    t.dictionary = keys.text("dictionary");
-    int markers = 0;
-    std::string known;
-    if (!detail::charucoDictionary(t.dictionary, &markers, &known)) {
-      keys.fail("dictionary", "'" + t.dictionary + "' is not an OpenCV aruco dictionary (" + known + ")");
-    }
-    t.squares_x = keys.integer("squares_x", 2, 1000);
-    t.squares_y = keys.integer("squares_y", 2, 1000);
-    t.square_size = keys.number("square_size", 0.0, 10.0);
-    t.marker_size = keys.number("marker_size", 0.0, 10.0);
-    if (t.marker_size >= t.square_size) {
-      std::ostringstream os;
-      os << t.marker_size << " m does not fit in its square of " << t.square_size << " m";
-      keys.fail("marker_size", os.str());
-    }
-    const int needed = t.squares_x * t.squares_y / 2;
-    if (needed > markers) {
-      keys.fail("dictionary", t.dictionary + " has " + std::to_string(markers) + " markers, the " +
-                                  std::to_string(t.squares_x) + " x " + std::to_string(t.squares_y) + " board needs " +
-                                  std::to_string(needed));
-    }
-    // The printed board's size, when given, must hold the squares.
-    for (const char* key : {"width", "height"}) {
-      if (!keys.has(key)) continue;
-      const double v = keys.number(key, 0.0, 100.0);
-      const int n = std::string(key) == "width" ? t.squares_x : t.squares_y;
-      if (n * t.square_size > v + 1e-9) {
-        std::ostringstream os;
-        os << v << " m is smaller than its " << n << " squares of " << t.square_size << " m (" << n * t.square_size << " m)";
-        keys.fail(key, os.str());
-      }
-    }
-    const double default_margin = 0.5 * t.square_size;
-    t.margin = keys.number("margin", -1e-12, 10.0, &default_margin);
-    t.size = t.square_size;
+    loadCharuco(keys, t);
   } else {
     keys.fail("type", "'" + type + "' is not a target type (" + kTypes + ")");
   }

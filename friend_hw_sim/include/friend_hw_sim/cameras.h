@@ -31,6 +31,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <std_srvs/Trigger.h>
 
+#include "imagenets/vision/marker_scene.h"
 #include "imagenets/vision/render.h"
 
 namespace friend_hw_sim {
@@ -72,9 +73,9 @@ cv::Mat renderView(const imagenets::render::Renderer& renderer, const WorldScene
                    const Eigen::Isometry3d& camera_in_base, const imagenets::render::RenderOptions& options,
                    WorldViewCache* cache = nullptr);
 
-// A specular highlight (a lamp on the gripper's metal): a Gaussian spot added to every channel,
-// saturating. The simulator's spurious-reflection fault; benchmarks reuse it.
-void addSpecularHighlight(cv::Mat& image, const cv::Point2d& centre, double sigma, double amplitude);
+// A specular highlight (a lamp on the gripper's metal): the simulator's spurious-reflection fault;
+// benchmarks and the marker study use it too.
+using imagenets::marker::addSpecularHighlight;
 
 class CameraSim {
  public:

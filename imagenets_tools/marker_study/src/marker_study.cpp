@@ -49,6 +49,8 @@ struct View {
   const StudyCondition* condition;
   double distance, blur, noise, illumination;
   std::uint64_t seed;
+  double highlight = 0, highlight_sigma = 0;  // gray levels, marker sides (StudyCondition::reflection)
+  cv::Point2d highlight_offset;
 };
 
 double percentile(std::vector<double> v, double q) {
@@ -100,6 +102,14 @@ const std::vector<StudyCondition>& studyConditions() {
     hard.illumination_min = 0.15;
     hard.illumination_max = 1.0;
     hard.background = 0.1;
+    // The worst of `combined` in every view at once: far, blurred, noisy and dim together.
+    StudyCondition& worst = add("worst");
+    worst.distance_min = worst.distance_max = 1.5;
+    worst.blur_min = worst.blur_max = 1.5;
+    worst.noise_min = worst.noise_max = 5.0;
+    worst.illumination_min = worst.illumination_max = 0.25;
+    worst.background = 0.1;
+    add("reflections").reflection = true;  // the paper's imaging and a lamp's glare on the print
     return c;
   }();
   return all;
@@ -120,7 +130,8 @@ std::vector<StudyCondition> selectConditions(const std::string& names) {
     if (name == "all" || name == "paper" || name == "hard") {
       for (size_t i = 0; i < all.size(); ++i) {
         const bool paper = i < 2;
-        if (name == "all" || (name == "paper") == paper) add(all[i]);
+        // Reflections are no harder imaging but a disturbance: by name or with `all` only.
+        if (name == "all" || (name == "paper" && paper) || (name == "hard" && !paper && !all[i].reflection)) add(all[i]);
       }
       continue;
     }
@@ -167,6 +178,11 @@ std::vector<View> drawViews(const StudyConfig& config) {
         v.blur = uniform(condition.blur_min, condition.blur_max);
         v.noise = uniform(condition.noise_min, condition.noise_max);
         v.seed = rng();
+        if (condition.reflection) {  // drawn after the rest: the other conditions' views stay as they were
+          v.highlight_offset = cv::Point2d(uniform(-0.5, 0.5), uniform(-0.5, 0.5));
+          v.highlight_sigma = uniform(0.12, 0.27);
+          v.highlight = uniform(200, 300);
+        }
         views.push_back(v);
       }
     }
@@ -260,6 +276,10 @@ class ViewMeasurement {
     settings.blur = v.blur;
     settings.noise = v.noise;
     settings.seed = v.seed;
+    settings.highlight = v.highlight;
+    settings.highlight_offset = v.highlight_offset;
+    settings.highlight_sigma = v.highlight_sigma;
+    settings.marker_size = scene_.marker.size;
     std::vector<StudyRow> rows;
     const cv::Mat square_image = renderView(*scene_.renderer, scene_.square, settings, &truth_);
     const cv::Mat board_image =
@@ -587,7 +607,8 @@ std::string toMarkdown(const std::vector<StudySummaryRow>& summary, const StudyC
     };
     os << "- " << c.name << ": distance " << span(c.distance_min, c.distance_max, 2) << " m, blur "
        << span(c.blur_min, c.blur_max, 1) << " px, noise " << span(c.noise_min, c.noise_max, 0) << ", illumination "
-       << span(c.illumination_min, c.illumination_max, 2) << ", wall " << span(c.background, c.background, 2) << "\n";
+       << span(c.illumination_min, c.illumination_max, 2) << ", wall " << span(c.background, c.background, 2)
+       << (c.reflection ? ", a specular highlight near the marker" : "") << "\n";
   }
   return os.str();
 }
@@ -617,6 +638,96 @@ std::string sideBySideMarkdown(const std::vector<StudySummaryRow>& summary) {
   return os.str();
 }
 
+namespace {
+
+// The error map's colours: a logarithmic scale from 0.01 mm to `scale_mm` (at least 0.1 mm).
+class LogColourScale {
+ public:
+  explicit LogColourScale(double scale_mm) : hi_(std::max(scale_mm, 10 * kLo)) {
+    cv::Mat ramp(256, 1, CV_8UC1);
+    for (int i = 0; i < 256; ++i) ramp.at<uchar>(i) = static_cast<uchar>(i);
+    cv::applyColorMap(ramp, colours_, cv::COLORMAP_VIRIDIS);
+  }
+  static constexpr double kLo = 0.01;  // mm: the bottom of the scale
+  double hi() const { return hi_; }
+  double level(double mm) const { return (std::log10(std::max(mm, kLo)) - std::log10(kLo)) / (std::log10(hi_) - std::log10(kLo)); }
+  cv::Scalar colour(double mm) const {
+    const int i = std::max(0, std::min(255, static_cast<int>(std::lround(255.0 * level(mm)))));
+    const cv::Vec3b c = colours_.at<cv::Vec3b>(i);
+    return cv::Scalar(c[0], c[1], c[2]);
+  }
+
+ private:
+  double hi_;
+  cv::Mat colours_;
+};
+
+const auto kFont = cv::FONT_HERSHEY_SIMPLEX;
+const int kCell = 24, kLeft = 50, kTop = 40, kGap = 70;
+
+void label(cv::Mat& img, const std::string& text, cv::Point at, double scale, const cv::Scalar& colour = cv::Scalar(0, 0, 0)) {
+  cv::putText(img, text, at, kFont, scale, colour, 1, cv::LINE_AA);
+}
+
+// One method's panel at y0: a cell per view coloured by its error (grey with a red cross: not
+// found), the tilt and pan axes.
+void drawPanel(cv::Mat& img, const std::vector<StudyRow>& rows, const std::string& condition, const std::string& method,
+               const std::vector<double>& pans, const std::vector<double>& tilts, int y0, const LogColourScale& scale) {
+  const int panel_w = static_cast<int>(pans.size()) * kCell, panel_h = static_cast<int>(tilts.size()) * kCell;
+  label(img, method, cv::Point(kLeft, y0 - 6), 0.5);
+  for (const auto& r : rows) {
+    if (r.condition != condition || r.method != method || r.decoy) continue;
+    const int cx = static_cast<int>(std::find(pans.begin(), pans.end(), r.pan) - pans.begin());
+    const int cy = static_cast<int>(std::find(tilts.begin(), tilts.end(), r.tilt) - tilts.begin());
+    const cv::Rect box(kLeft + cx * kCell, y0 + cy * kCell, kCell, kCell);
+    if (r.found) {
+      cv::rectangle(img, box, scale.colour(r.position_error_mm), cv::FILLED);
+    } else {
+      cv::rectangle(img, box, cv::Scalar(160, 160, 160), cv::FILLED);
+      cv::line(img, box.tl(), box.br() - cv::Point(1, 1), cv::Scalar(0, 0, 255), 1);
+      cv::line(img, cv::Point(box.x, box.y + kCell - 1), cv::Point(box.x + kCell - 1, box.y), cv::Scalar(0, 0, 255), 1);
+    }
+  }
+  cv::rectangle(img, cv::Rect(kLeft, y0, panel_w, panel_h), cv::Scalar(0, 0, 0), 1);
+  for (size_t t = 0; t < tilts.size(); ++t) {
+    std::ostringstream s;
+    s << tilts[t];
+    label(img, s.str(), cv::Point(kLeft - 20, y0 + static_cast<int>(t) * kCell + 16), 0.35);
+  }
+  for (size_t p = 0; p < pans.size(); p += std::max<size_t>(1, pans.size() / 12)) {
+    std::ostringstream s;
+    s << pans[p];
+    label(img, s.str(), cv::Point(kLeft + static_cast<int>(p) * kCell + 2, y0 + panel_h + 14), 0.35);
+  }
+  label(img, "pan [deg] ->", cv::Point(kLeft + panel_w - 90, y0 + panel_h + 30), 0.4);
+  label(img, "tilt", cv::Point(kLeft - 45, y0 + panel_h / 2 + 4), 0.35);
+}
+
+// The colour bar at (bx, by), bh high, with a tick per decade and at the top of the scale.
+void drawColourBar(cv::Mat& img, int bx, int by, int bh, const LogColourScale& scale) {
+  const double lo = LogColourScale::kLo, hi = scale.hi();
+  for (int i = 0; i < bh; ++i) {
+    const double mm = lo * std::pow(hi / lo, i / (bh - 1.0));
+    cv::line(img, cv::Point(bx, by + bh - 1 - i), cv::Point(bx + 16, by + bh - 1 - i), scale.colour(mm), 1);
+  }
+  cv::rectangle(img, cv::Rect(bx, by, 17, bh), cv::Scalar(0, 0, 0), 1);
+  std::vector<double> ticks;
+  for (double t = lo; t <= hi * 1.0001; t *= 10) ticks.push_back(t);
+  if (hi / ticks.back() > 1.5) ticks.push_back(hi);
+  for (double t : ticks) {
+    std::ostringstream s;
+    s << (t < 0.1 ? std::setprecision(2) : std::setprecision(t < 1 ? 1 : 0)) << std::fixed << t;
+    if (t == hi) s << "+";
+    const int y = by + bh - 1 - static_cast<int>(std::lround(scale.level(t) * (bh - 1)));
+    cv::line(img, cv::Point(bx + 17, y), cv::Point(bx + 21, y), cv::Scalar(0, 0, 0), 1);
+    label(img, s.str(), cv::Point(bx + 24, y + 4), 0.35);
+  }
+  label(img, "mm (log)", cv::Point(bx - 5, by - 6), 0.35);
+  label(img, "x = not found", cv::Point(bx - 5, by + bh + 20), 0.35, cv::Scalar(0, 0, 255));
+}
+
+}  // namespace
+
 cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& condition, double scale_mm) {
   std::vector<double> pans, tilts;
   std::vector<std::string> methods;
@@ -628,79 +739,17 @@ cv::Mat errorMapImage(const std::vector<StudyRow>& rows, const std::string& cond
   }
   std::sort(pans.begin(), pans.end());
   std::sort(tilts.begin(), tilts.end());
-  const int cell = 24, left = 50, top = 40, gap = 70, bar = 80;
-  const int panel_w = static_cast<int>(pans.size()) * cell, panel_h = static_cast<int>(tilts.size()) * cell;
-  const int width = std::max(460, left + panel_w + bar + 40);
-  const int height = top + 20 + static_cast<int>(methods.size()) * (panel_h + gap) + 10;
+  const int bar = 80;
+  const int panel_w = static_cast<int>(pans.size()) * kCell, panel_h = static_cast<int>(tilts.size()) * kCell;
+  const int width = std::max(460, kLeft + panel_w + bar + 40);
+  const int height = kTop + 20 + static_cast<int>(methods.size()) * (panel_h + kGap) + 10;
   cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
-  cv::Mat ramp(256, 1, CV_8UC1);
-  for (int i = 0; i < 256; ++i) ramp.at<uchar>(i) = static_cast<uchar>(i);
-  cv::Mat colours;
-  cv::applyColorMap(ramp, colours, cv::COLORMAP_VIRIDIS);
-  const double lo = 0.01;  // mm: the bottom of the logarithmic scale
-  const double hi = std::max(scale_mm, 10 * lo);
-  auto level = [&](double mm) { return (std::log10(std::max(mm, lo)) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)); };
-  auto colourOf = [&](double mm) {
-    const int i = std::max(0, std::min(255, static_cast<int>(std::lround(255.0 * level(mm)))));
-    const cv::Vec3b c = colours.at<cv::Vec3b>(i);
-    return cv::Scalar(c[0], c[1], c[2]);
-  };
-  const auto font = cv::FONT_HERSHEY_SIMPLEX;
-  cv::putText(img, "position error [mm], condition " + condition, cv::Point(left, 22), font, 0.6, cv::Scalar(0, 0, 0), 1,
-              cv::LINE_AA);
+  const LogColourScale scale(scale_mm);
+  label(img, "position error [mm], condition " + condition, cv::Point(kLeft, 22), 0.6);
   for (size_t m = 0; m < methods.size(); ++m) {
-    const int y0 = top + 20 + static_cast<int>(m) * (panel_h + gap);
-    cv::putText(img, methods[m], cv::Point(left, y0 - 6), font, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    for (const auto& r : rows) {
-      if (r.condition != condition || r.method != methods[m] || r.decoy) continue;
-      const int cx = static_cast<int>(std::find(pans.begin(), pans.end(), r.pan) - pans.begin());
-      const int cy = static_cast<int>(std::find(tilts.begin(), tilts.end(), r.tilt) - tilts.begin());
-      const cv::Rect box(left + cx * cell, y0 + cy * cell, cell, cell);
-      if (r.found) {
-        cv::rectangle(img, box, colourOf(r.position_error_mm), cv::FILLED);
-      } else {
-        cv::rectangle(img, box, cv::Scalar(160, 160, 160), cv::FILLED);
-        cv::line(img, box.tl(), box.br() - cv::Point(1, 1), cv::Scalar(0, 0, 255), 1);
-        cv::line(img, cv::Point(box.x, box.y + cell - 1), cv::Point(box.x + cell - 1, box.y), cv::Scalar(0, 0, 255), 1);
-      }
-    }
-    cv::rectangle(img, cv::Rect(left, y0, panel_w, panel_h), cv::Scalar(0, 0, 0), 1);
-    for (size_t t = 0; t < tilts.size(); ++t) {
-      std::ostringstream s;
-      s << tilts[t];
-      cv::putText(img, s.str(), cv::Point(left - 20, y0 + static_cast<int>(t) * cell + 16), font, 0.35,
-                  cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    }
-    for (size_t p = 0; p < pans.size(); p += std::max<size_t>(1, pans.size() / 12)) {
-      std::ostringstream s;
-      s << pans[p];
-      cv::putText(img, s.str(), cv::Point(left + static_cast<int>(p) * cell + 2, y0 + panel_h + 14), font, 0.35,
-                  cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    }
-    cv::putText(img, "pan [deg] ->", cv::Point(left + panel_w - 90, y0 + panel_h + 30), font, 0.4, cv::Scalar(0, 0, 0),
-                1, cv::LINE_AA);
-    cv::putText(img, "tilt", cv::Point(left - 45, y0 + panel_h / 2 + 4), font, 0.35, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    drawPanel(img, rows, condition, methods[m], pans, tilts, kTop + 20 + static_cast<int>(m) * (panel_h + kGap), scale);
   }
-  // Colour bar.
-  const int bx = left + panel_w + 20, by = top + 20, bh = std::max(120, panel_h * 2);
-  for (int i = 0; i < bh; ++i) {
-    const double mm = lo * std::pow(hi / lo, i / (bh - 1.0));
-    cv::line(img, cv::Point(bx, by + bh - 1 - i), cv::Point(bx + 16, by + bh - 1 - i), colourOf(mm), 1);
-  }
-  cv::rectangle(img, cv::Rect(bx, by, 17, bh), cv::Scalar(0, 0, 0), 1);
-  std::vector<double> ticks;
-  for (double t = lo; t <= hi * 1.0001; t *= 10) ticks.push_back(t);
-  if (hi / ticks.back() > 1.5) ticks.push_back(hi);
-  for (double t : ticks) {
-    std::ostringstream s;
-    s << (t < 0.1 ? std::setprecision(2) : std::setprecision(t < 1 ? 1 : 0)) << std::fixed << t;
-    if (t == hi) s << "+";
-    const int y = by + bh - 1 - static_cast<int>(std::lround(level(t) * (bh - 1)));
-    cv::line(img, cv::Point(bx + 17, y), cv::Point(bx + 21, y), cv::Scalar(0, 0, 0), 1);
-    cv::putText(img, s.str(), cv::Point(bx + 24, y + 4), font, 0.35, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  }
-  cv::putText(img, "mm (log)", cv::Point(bx - 5, by - 6), font, 0.35, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  cv::putText(img, "x = not found", cv::Point(bx - 5, by + bh + 20), font, 0.35, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+  drawColourBar(img, kLeft + panel_w + 20, kTop + 20, std::max(120, panel_h * 2), scale);
   return img;
 }
 

@@ -11,7 +11,9 @@
 // ranges (seeded, the same for the three methods). The paper's conditions are `even` (its lighting)
 // and `varying` (an illumination that changes from image to image); the harder ones
 // take the marker out to 1.5 m, blur it up to 2 px, add noise up to 6 gray levels and dim the scene
-// down to 15 %, one at a time and all together, also in front of a dark wall.
+// down to 15 %, one at a time and all together, also in front of a dark wall; `worst` has the far
+// end of every range at once in every view (1.5 m, 1.5 px, noise 5, 25 % light, dark wall), and
+// `reflections` a specular highlight near the marker in every view.
 //
 // With `decoys`, every view is rendered a second time with a decoy in the marker's place: the same
 // black-bordered square with another, random 6 x 6 pattern (for libapriltag, a tag36h11 of another
@@ -39,12 +41,15 @@ struct StudyCondition {
   double noise_min = 2.0, noise_max = 2.0;                // sensor noise sigma, gray levels, uniform
   double illumination_min = 1.0, illumination_max = 1.0;  // log-uniform
   double background = 0.5;                                // wall level (before illumination)
+  // A specular highlight near the marker in every view (as the simulator's reflection fault: a
+  // saturating spot of 0.12..0.27 marker sides within half a side of its centre, 200..300 gray levels).
+  bool reflection = false;
 };
 
 // Every condition the study knows, in table order: the paper's two, then the harder ones.
 const std::vector<StudyCondition>& studyConditions();
-// `names`: comma-separated condition names, or `paper` (even, varying), `hard` (the harder ones) or
-// `all`. Throws std::invalid_argument naming an unknown name and listing the known ones.
+// `names`: comma-separated condition names, or `paper` (even, varying), `hard` (the harder imaging:
+// all but the paper's and `reflections`) or `all`. Throws std::invalid_argument naming an unknown name and listing the known ones.
 std::vector<StudyCondition> selectConditions(const std::string& names);
 
 struct StudyConfig {

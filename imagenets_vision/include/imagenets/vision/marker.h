@@ -54,6 +54,12 @@ struct DetectorOptions {
   double min_confidence = 0.5;  // below: found = false
   double min_side_px = 12.0;    // quads with a shorter side (contour or located square) are ignored
   int refine_passes = 2;        // sub-pixel edge refinement passes on the gray image (0 = none)
+  // The dark regions' outlines traced on every `decimate`-th pixel and row of the thresholded
+  // image (1: all). Tracing is most of a threshold trial's cost on a noisy image (thousands of
+  // specks); the rough corners it gives are then located on the full gray image as before, so a
+  // marker whose border is a few pixels wide at that scale is found at the same corners. With a
+  // pose hint that shows the border under 3 px at that scale (far, steep), every pixel is traced.
+  int decimate = 1;
   // After the refinement, fit a blurred-step model to every pixel along each outer edge (more
   // accurate in dim, noisy, blurred images, where single profile crossings are noisy).
   bool edge_model = false;

@@ -24,12 +24,23 @@ struct ViewSettings {
   double blur = 0.7;          // optical blur sigma, pixels
   double noise = 2.0;         // sensor noise sigma, gray levels
   std::uint64_t seed = 1;
+  // A specular highlight near the marker (a lamp on the gripper's metal), after the noise:
+  // `highlight` gray levels at its centre (0: none), centred `highlight_offset` from the marker's
+  // centre, `highlight_sigma` wide; both in marker sides (`marker_size`, metres) in the image.
+  double highlight = 0;
+  cv::Point2d highlight_offset{0, 0};
+  double highlight_sigma = 0.2;
+  double marker_size = 0.06;
 };
 
 // Renders `plane` (its pose is replaced) as seen with `view`; returns the mono8 image and writes
 // the true marker pose in the camera frame (T_camera_marker) to `truth`.
 cv::Mat renderView(const render::Renderer& renderer, render::Plane plane, const ViewSettings& view,
                    Eigen::Isometry3d* truth);
+
+// A specular highlight: a Gaussian spot of `sigma` pixels, `amplitude` gray levels at `centre`,
+// added to every channel, saturating (the simulator's reflection fault, the study's reflections).
+void addSpecularHighlight(cv::Mat& image, const cv::Point2d& centre, double sigma, double amplitude);
 
 // One renderer per camera model and supersampling, shared (its ray grid costs ~0.3 s to build).
 std::shared_ptr<const render::Renderer> sharedRenderer(const render::CameraModel& camera, int supersampling);
