@@ -257,6 +257,10 @@ CameraSim::CameraSim(ros::NodeHandle nh, ros::NodeHandle pnh, const FriendSim& s
   left_ = makeCamera(nh_, "stereo/left", d.left_camera_info, d.left_camera.frame, ss);
   right_ = makeCamera(nh_, "stereo/right", d.right_camera_info, d.right_camera_frame, ss);
   hand_ = makeCamera(nh_, "hand_camera", imagenets::packageFile("friend_description", "config/cameras/friend_hand_camera.yaml"), d.hand_camera.frame, ss);
+  if (!d.mono_camera.frame.empty()) {
+    mono_ = std::make_unique<Camera>(makeCamera(nh_, "head_camera", d.mono_camera_info, d.mono_camera.frame, ss));
+    trigger_mono_ = nh_.advertiseService("head_camera/trigger", &CameraSim::triggerMono, this);
+  }
   // The world's planes as thin boxes for rviz (latched: the world does not change).
   scene_markers_ = nh_.advertise<visualization_msgs::MarkerArray>("scene_markers", 1, true);
   visualization_msgs::MarkerArray markers;
@@ -394,6 +398,27 @@ bool CameraSim::triggerStereo(std_srvs::Trigger::Request&, std_srvs::Trigger::Re
   return true;
 }
 
+bool CameraSim::triggerMono(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  try {
+    res.success = !silent();
+    if (res.success) publishMono();
+    res.message = res.success ? "head camera image published" : "head camera silent (fault: ~faults/camera_silent)";
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = std::string("head camera: ") + e.what();
+  }
+  return true;
+}
+
+void CameraSim::publishMono() {
+  std::lock_guard<std::mutex> lock(render_mutex_);
+  const RobotState s = sim_.state();
+  const auto truth_now = sim_.truth();  // one true robot for the whole frame
+  const Eigen::Isometry3d marker = truth_now->marker(s.arm), cam = truth_now->monoCamera(s.head);
+  cv::Mat image = renderView(*mono_->renderer, world_, marker_plane_, marker, cam, options(++frame_ * 2), &mono_->cache);
+  if (applyFaults(image, *mono_, cam, marker)) publish(*mono_, image, s.stamp);
+}
+
 bool CameraSim::triggerHand(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
   try {
     res.success = !silent();
@@ -417,6 +442,7 @@ void CameraSim::loop() {
       if (stereo_rate > 0 && now >= next_stereo) {
         next_stereo = now + ros::Duration(1.0 / stereo_rate);
         if (left_.image.getNumSubscribers() + right_.image.getNumSubscribers() > 0) publishStereo();
+        if (mono_ && mono_->image.getNumSubscribers() > 0) publishMono();
       }
       if (hand_rate > 0 && now >= next_hand) {
         next_hand = now + ros::Duration(1.0 / hand_rate);

@@ -88,6 +88,9 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
     links.head_tip = link(head, "tip_link", w + ": head");
     links.left_camera = link(stereo, "left_link", w + ": head.stereo_camera");
     links.right_camera = link(stereo, "right_link", w + ": head.stereo_camera");
+    // Optional: a mono camera on the head ({link, camera_info}).
+    const YAML::Node mono = head["mono_camera"];
+    if (mono) links.mono_camera = link(mono, "link", w + ": head.mono_camera");
     d.arm.link_prefix = arm["link_prefix"] ? arm["link_prefix"].as<std::string>() : "arm_link_";
     d.head.link_prefix = head["link_prefix"] ? head["link_prefix"].as<std::string>() : "head_link_";
     d = withUrdfKinematics(d, urdf, links);
@@ -99,6 +102,7 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
     d.image_height = static_cast<int>(numberOr(stereo, "height", 768, ws));
     d.left_camera_info = file(stereo, "left_camera_info");
     d.right_camera_info = file(stereo, "right_camera_info");
+    if (mono) d.mono_camera_info = file(mono, "camera_info");
     d.arm_calibration_pose = poseDeg(arm, "calibration_pose_deg", w + ": arm", d.arm);
     d.arm_home = poseDeg(arm, "home_deg", w + ": arm", d.arm);
     d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
@@ -276,6 +280,9 @@ Eigen::Isometry3d RobotModel::handCamera(const std::vector<double>& q) const { r
 Eigen::Isometry3d RobotModel::ftSensor(const std::vector<double>& q) const { return d_.arm.end(q) * d_.ft_sensor.pose; }
 Eigen::Isometry3d RobotModel::leftCamera(const std::vector<double>& q) const {
   return d_.head.end(q) * d_.left_camera.pose;
+}
+Eigen::Isometry3d RobotModel::monoCamera(const std::vector<double>& q) const {
+  return d_.head.end(q) * d_.mono_camera.pose;
 }
 Eigen::Isometry3d RobotModel::leftToRight() const {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();

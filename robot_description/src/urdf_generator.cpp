@@ -163,6 +163,10 @@ std::string generateUrdf(const RobotDescription& d, const std::string& robot_nam
     w.link(d.right_camera_frame, {cylinder(0.015, 0.02, "joint_grey")});
     w.joint(d.right_camera_frame + "_joint", "fixed", d.left_camera.frame, d.right_camera_frame, right);
   }
+  if (!d.mono_camera.frame.empty()) {
+    w.link(d.mono_camera.frame, {cylinder(0.012, 0.02, "joint_grey")});
+    w.joint(d.mono_camera.frame + "_joint", "fixed", head_end, d.mono_camera.frame, d.mono_camera.pose);
+  }
   o << "</robot>\n";
   return o.str();
 }

@@ -150,6 +150,7 @@ RobotDescription withUrdfKinematics(RobotDescription d, const UrdfKinematics& ur
   fixed(d.hand_camera, links.tool, links.hand_camera);
   fixed(d.ft_sensor, links.arm_tip, links.ft_sensor);
   fixed(d.left_camera, links.head_tip, links.left_camera);
+  if (!links.mono_camera.empty()) fixed(d.mono_camera, links.head_tip, links.mono_camera);
   const Eigen::Isometry3d right = urdf.fixedTransform(links.left_camera, links.right_camera);
   const double angle = Eigen::AngleAxisd(right.linear()).angle();
   if (angle > 1e-9 || std::abs(right.translation().y()) > 1e-9 || std::abs(right.translation().z()) > 1e-9) {

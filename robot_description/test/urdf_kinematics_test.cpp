@@ -158,6 +158,21 @@ TEST(UrdfKinematics, ARobotThatExistsOnlyAsAUrdfLoadsThroughItsDescription) {
   checkRoundTrip(d);
 }
 
+TEST(UrdfKinematics, AMonoCameraOnTheHeadIsReadBesideTheStereoPair) {
+  // config/mobile_manipulator: its RGB camera between the stereo cameras, 0.03 m above them.
+  const RobotModel m(loadRobotDescription("config/mobile_manipulator/robot.yaml"));
+  const auto& d = m.description();
+  EXPECT_EQ(d.arm.joints.size(), 7u);
+  EXPECT_EQ(d.mono_camera.frame, "head_camera_rgb_optical_frame");
+  EXPECT_NE(d.mono_camera_info.find("mobile_manipulator/head_camera_rgb.yaml"), std::string::npos);
+  const std::vector<double> head{0.3, -0.2};
+  const Eigen::Isometry3d in_left = m.leftCamera(head).inverse() * m.monoCamera(head);
+  EXPECT_LT((in_left.translation() - Eigen::Vector3d(0.06, -0.03, 0)).norm(), 1e-12);
+  EXPECT_LT(Eigen::AngleAxisd(in_left.linear()).angle(), 1e-12);
+  // A description without one has none.
+  EXPECT_TRUE(loadRobotDescription("config/six_axis/robot.yaml").mono_camera.frame.empty());
+}
+
 TEST(UrdfKinematics, WhatDoesNotFitIsNamed) {
   EXPECT_NE(messageOf([] { UrdfKinematics("<robot name='x'><link name='a'/>", "broken.urdf"); }).find("broken.urdf: not a valid URDF"),
             std::string::npos);

@@ -11,6 +11,7 @@
 
 #include "imagenets_calibration/storage.h"
 #include "imagenets_calibration_msgs/Calibrate.h"
+#include "imagenets/testing/rostest_util.h"
 
 namespace {
 
@@ -32,12 +33,9 @@ int run(const std::string& command, std::string* output) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// The node's default calibration (redundancy 5, joint method), as a user asks for it.
 imagenets_calibration_msgs::Calibrate::Response calibrate() {
-  imagenets_calibration_msgs::Calibrate srv;
-  srv.request.redundancy = 5;
-  srv.request.method = "joint";
-  EXPECT_TRUE(ros::service::call("/calibration/calibrate", srv));
-  return srv.response;
+  return callService<imagenets_calibration_msgs::Calibrate>("/calibration/calibrate");
 }
 
 TEST(FriendCalibrationBag, OfflineFromTheRecordedBagEqualsTheLiveRun) {

@@ -13,6 +13,7 @@
 #include "imagenets/vision/frames.h"
 #include "imagenets_calibration/calibration.h"
 #include "imagenets_calibration_msgs/Calibrate.h"
+#include "imagenets/testing/rostest_util.h"
 #include "robot_description/robot_model.h"
 
 namespace {
@@ -28,12 +29,9 @@ std::string readFile(const std::string& path) {
   return s.str();
 }
 
+// The node's default calibration (redundancy 5, joint method), as a user asks for it.
 imagenets_calibration_msgs::Calibrate::Response calibrate() {
-  imagenets_calibration_msgs::Calibrate srv;
-  srv.request.redundancy = 5;
-  srv.request.method = "joint";
-  EXPECT_TRUE(ros::service::call("/calibration/calibrate", srv));
-  return srv.response;
+  return callService<imagenets_calibration_msgs::Calibrate>("/calibration/calibrate");
 }
 
 TEST(FriendCalibrationTrajectory, TheRobotServesOnlyTheStandardMotionInterface) {

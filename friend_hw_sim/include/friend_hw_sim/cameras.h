@@ -1,12 +1,15 @@
 // Simulated cameras of the FRIEND robot: the stereo camera on the pan-tilt head (left/right
-// image_raw + camera_info, identical stamps) and the hand camera on the gripper. Images are
+// image_raw + camera_info, identical stamps), the hand camera on the gripper and, when the robot's
+// description has one (head.mono_camera), a mono camera on the head. Images are
 // rendered from the TRUE geometry (where the arm and head really are) with the shared renderer
 // (imagenets/vision/render.h): the gripper marker on its plate, plus a textured table, boxes,
 // floor and wall (config/friend/scene.yaml).
 //
-// Topics: stereo/{left,right}/{image_raw,camera_info}, hand_camera/{image_raw,camera_info};
+// Topics: stereo/{left,right}/{image_raw,camera_info}, hand_camera/{image_raw,camera_info},
+// head_camera/{image_raw,camera_info} (the mono camera, at camera/rate);
 // scene_markers (visualization_msgs/MarkerArray, latched: the world's planes for rviz);
-// services stereo/trigger, hand_camera/trigger (std_srvs/Trigger: render and publish now).
+// services stereo/trigger, hand_camera/trigger, head_camera/trigger (std_srvs/Trigger: render and
+// publish now).
 // Private parameters (read live unless noted):
 //   camera/rate (Hz, 0 = only on trigger; default 5), hand_camera/rate (default 2),
 //   camera/illumination (1.0), camera/noise (gray levels, 1.5), camera/blur (px, 0.6),
@@ -93,8 +96,10 @@ class CameraSim {
   void loop();
   void publishStereo();
   void publishHand();
+  void publishMono();
   bool triggerStereo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool triggerHand(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  bool triggerMono(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   imagenets::render::RenderOptions options(std::uint64_t seed);
   // faults/camera_silent is set.
   bool silent();
@@ -111,7 +116,8 @@ class CameraSim {
   imagenets::render::Plane marker_plane_;  // pose set per frame
   double marker_size_ = 0.06;
   Camera left_, right_, hand_;
-  ros::ServiceServer trigger_stereo_, trigger_hand_;
+  std::unique_ptr<Camera> mono_;  // the head's mono camera, if the robot has one
+  ros::ServiceServer trigger_stereo_, trigger_hand_, trigger_mono_;
   ros::Publisher scene_markers_;
   std::mutex render_mutex_, rng_mutex_;
   std::mt19937 rng_;

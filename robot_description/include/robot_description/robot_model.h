@@ -123,6 +123,10 @@ struct RobotDescription {
   double stereo_baseline = 0.12;  // right camera sits at +baseline along the left optical x
   int image_width = 1024, image_height = 768;
   std::string left_camera_info, right_camera_info;  // absolute paths (may not exist)
+  // A mono camera on the head beside the stereo pair (e.g. an RGB camera; frame "" when none):
+  // head last link -> its optical frame, and its camera_info file (absolute path).
+  FixedFrame mono_camera;
+  std::string mono_camera_info;
   std::vector<double> arm_calibration_pose, arm_home, head_calibration_pose, head_home;
 };
 
@@ -145,6 +149,7 @@ class RobotModel {
   Eigen::Isometry3d headBase() const { return d_.head.mount; }            // base -> head_link_0
   Eigen::Isometry3d leftCamera(const std::vector<double>& head_q) const;  // base -> left optical
   Eigen::Isometry3d rightCamera(const std::vector<double>& head_q) const; // base -> right optical
+  Eigen::Isometry3d monoCamera(const std::vector<double>& head_q) const;  // base -> mono optical
   // Right optical frame in the left optical frame (pure translation by the baseline).
   Eigen::Isometry3d leftToRight() const;
 

@@ -42,6 +42,7 @@ struct UrdfLinks {
   std::string base;                           // the arm and the head hang from it
   std::string arm_tip, tool, marker, hand_camera, ft_sensor;  // arm chain end; fixed to it: TCP, ...
   std::string head_tip, left_camera, right_camera;            // head chain end; stereo optical frames
+  std::string mono_camera;                                    // fixed to the head chain end ("": none)
 };
 
 // `description` with its kinematics taken from the URDF between `links`: base frame, arm and head

@@ -1,11 +1,12 @@
-// Helpers of the rostest nodes: wait for a condition, and the newest message of a topic (wait
-// for one, or for one stamped at or after a given time: a message from after an action, not an
-// old latched one).
+// Helpers of the rostest nodes: wait for a condition, call a service once it is there, and the
+// newest message of a topic (wait for one, or for one stamped at or after a given time: a message
+// from after an action, not an old latched one).
 #pragma once
 
 #include <chrono>
 #include <functional>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -19,6 +20,21 @@ inline bool waitFor(const std::function<bool()>& done, double seconds) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   return done();
+}
+
+// Calls the service `name` with `request` once it is advertised (e.g. by a node that starts with
+// the simulator), waiting up to `timeout` s; its response. Throws naming the service when it is
+// not advertised in time or the call fails (a test that does not catch it fails with that).
+template <class Service>
+typename Service::Response callService(const std::string& name, const typename Service::Request& request = {},
+                                       double timeout = 60.0) {
+  if (!ros::service::waitForService(name, ros::Duration(timeout))) {
+    throw std::runtime_error("service " + name + " not advertised within " + std::to_string(timeout) + " s");
+  }
+  Service srv;
+  srv.request = request;
+  if (!ros::service::call(name, srv)) throw std::runtime_error("call of service " + name + " failed");
+  return srv.response;
 }
 
 template <class M>
