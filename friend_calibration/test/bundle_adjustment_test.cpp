@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "imagenets_calibration/bundle_adjustment.h"
 #include "imagenets_calibration/calibration_msgs.h"
@@ -355,6 +356,69 @@ TEST_F(BundleAdjustmentTest, AGoodCalibrationIsNotOverwrittenByOneWithAnUncertai
   EXPECT_EQ(overwriteRefusal(good, file, 0.002), "");
   EXPECT_EQ(overwriteRefusal(noisy, file, 0.0), "");  // off
   std::filesystem::remove_all(dir);
+}
+
+// Each estimated parameter's standard deviation is the root of its own diagonal element of the
+// fit's posterior covariance (found by the parameter's name), in the result, in the file (written
+// and read back) and in the Calibrate response.
+TEST_F(BundleAdjustmentTest, EachEstimatedParameterHasItsStandardDeviationInTheFileAndTheResponse) {
+  const OneLoopFallback f = solveBothWays(*this, simulate(4, 0.05, 10).samples);
+  ASSERT_TRUE(f.ba.ok && f.ba.determined) << f.ba.message;
+  const Observability& o = f.ba.observability;
+  auto posterior = [&](const std::string& name) {
+    for (size_t i = 0; i < o.parameters.size(); ++i) {
+      if (o.parameters[i].name == name) return std::sqrt(o.covariance(i, i));
+    }
+    ADD_FAILURE() << "the fit has no parameter '" << name << "'";
+    return -1.0;
+  };
+  const char* axes[] = {"x", "y", "z", "rx", "ry", "rz"};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_DOUBLE_EQ(f.ba.fixedPointStd()[i], posterior(std::string("fixed point ") + axes[i]));
+    EXPECT_DOUBLE_EQ(f.ba.markerOffsetStd()[i], posterior(std::string("marker offset ") + axes[i]));
+    EXPECT_GT(f.ba.fixedPointStd()[i], 0.0);
+  }
+  const auto& arm = model.description().arm.joints;
+  const auto& head = model.description().head.joints;
+  for (size_t j = 1; j + 1 < arm.size(); ++j) EXPECT_DOUBLE_EQ(f.ba.arm_joint_offset_std[j], posterior(arm[j].name + " offset"));
+  EXPECT_DOUBLE_EQ(f.ba.head_joint_offset_std[1], posterior(head[1].name + " offset"));
+  EXPECT_EQ(f.ba.arm_joint_offset_std.front(), 0.0);  // not estimated
+  EXPECT_EQ(f.ba.head_joint_offset_std.front(), 0.0);
+  std::printf("1 sigma: fixed point x y z %.4f %.4f %.4f mm, rx ry rz %.5f %.5f %.5f deg; %s offset %.5f deg\n",
+              1000 * f.ba.fixedPointStd()[0], 1000 * f.ba.fixedPointStd()[1], 1000 * f.ba.fixedPointStd()[2],
+              f.ba.fixedPointStd()[3] / kDeg, f.ba.fixedPointStd()[4] / kDeg, f.ba.fixedPointStd()[5] / kDeg,
+              arm[1].name.c_str(), f.ba.arm_joint_offset_std[1] / kDeg);
+  // calibrate() ran the same fit (equal up to the solver's summation order).
+  const Result& r = f.calibrated;
+  EXPECT_LT((r.fixedPointStd() - f.ba.fixedPointStd()).norm(), 1e-6 * f.ba.fixedPointStd().norm());
+
+  const auto dir = std::filesystem::temp_directory_path() / ("std_dev_" + std::to_string(::getpid()));
+  StoredCalibration stored;
+  stored.result = r;
+  ASSERT_EQ(saveCalibration(stored, (dir / "c.yaml").string()), "");
+  const YAML::Node file = YAML::LoadFile((dir / "c.yaml").string());
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(file["fixed_point_std_dev"]["xyz"][i].as<double>(), r.fixedPointStd()[i]);
+    EXPECT_DOUBLE_EQ(file["fixed_point_std_dev"]["rotation"][i].as<double>(), r.fixedPointStd()[3 + i]);
+    EXPECT_DOUBLE_EQ(file["marker_offset_std_dev"]["xyz"][i].as<double>(), r.markerOffsetStd()[i]);
+    EXPECT_DOUBLE_EQ(file["marker_offset_std_dev"]["rotation"][i].as<double>(), r.markerOffsetStd()[3 + i]);
+  }
+  EXPECT_EQ(file["arm_joint_offset_std"].as<std::vector<double>>(), r.arm_joint_offset_std);
+  const Result loaded = loadCalibration((dir / "c.yaml").string()).result;
+  EXPECT_EQ(loaded.fixedPointStd(), r.fixedPointStd());
+  EXPECT_EQ(loaded.markerOffsetStd(), r.markerOffsetStd());
+  EXPECT_EQ(loaded.arm_joint_offset_std, r.arm_joint_offset_std);
+  EXPECT_EQ(loaded.head_joint_offset_std, r.head_joint_offset_std);
+  std::filesystem::remove_all(dir);
+
+  imagenets_calibration_msgs::Calibrate::Response response;
+  summarize(toMsg(r, "base_link", "pth_fixed_point"), response);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_DOUBLE_EQ(response.fixed_point_std_dev[i], r.fixedPointStd()[i]);
+    EXPECT_DOUBLE_EQ(response.marker_offset_std_dev[i], r.markerOffsetStd()[i]);
+  }
+  EXPECT_EQ(response.arm_joint_offset_std, r.arm_joint_offset_std);
+  EXPECT_EQ(response.head_joint_offset_std, r.head_joint_offset_std);
 }
 
 }  // namespace
