@@ -421,5 +421,69 @@ TEST_F(BundleAdjustmentTest, EachEstimatedParameterHasItsStandardDeviationInTheF
   EXPECT_EQ(response.head_joint_offset_std, r.head_joint_offset_std);
 }
 
+// free_params: a parameter held keeps its nominal value exactly (and has no uncertainty); the
+// others still converge to the truth.
+TEST_F(BundleAdjustmentTest, HeldParametersKeepTheirNominalValueAndTheOthersConverge) {
+  auto error = friend_hw_sim::loadTrueError(trueErrorFile(), model.description(), 5);
+  error.arm_joint_offsets.front() = error.arm_joint_offsets.back() = 0;
+  error.head_joint_offsets.front() = 0;
+  // (a) The target where it is drawn and arm joint 3 reading true: both held.
+  error.marker_xyz.setZero();
+  error.marker_rpy.setZero();
+  error.arm_joint_offsets[2] = 0;
+  auto d = model.description();
+  d.free_params = {"fixed_point"};
+  for (size_t j = 1; j + 1 < d.arm.joints.size(); ++j) {
+    if (j != 2) d.free_params.push_back(d.arm.joints[j].name);
+  }
+  d.free_params.push_back(d.head.joints[1].name);
+  const RobotModel held(d);
+  const Simulated sim = simulate(error, 5, 0.05);
+  const Result r = calibrate(held, sim.samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r.success && r.has_covariance) << r.message;
+  EXPECT_EQ(r.marker_offset.matrix(), d.marker.pose.matrix());
+  EXPECT_EQ(r.arm_joint_offsets[2], 0.0);
+  EXPECT_EQ(r.markerOffsetStd(), (Eigen::Matrix<double, 6, 1>::Zero()));
+  EXPECT_EQ(r.arm_joint_offset_std[2], 0.0);
+  EXPECT_GT(r.arm_joint_offset_std[1], 0.0);
+  const Eigen::Isometry3d truth = sim.truth.headBase();
+  const double et = (r.fixed_point.translation() - truth.translation()).norm(), er = angleBetween(r.fixed_point, truth);
+  // The joint offsets: from none (nominal) to within a small part of the largest true one.
+  double worst_joint = 0, largest_true = 0;
+  for (size_t j = 0; j < error.arm_joint_offsets.size(); ++j) {
+    worst_joint = std::max(worst_joint, std::abs(r.arm_joint_offsets[j] - error.arm_joint_offsets[j]));
+    largest_true = std::max(largest_true, std::abs(error.arm_joint_offsets[j]));
+  }
+  std::printf("target offset and %s held: fixed point %.4f mm / %.5f deg off the truth (3 sigma %.4f mm); joint "
+              "offsets within %.5f deg (largest true %.5f deg)\n",
+              d.arm.joints[2].name.c_str(), et * 1000, er / kDeg, 3000 * r.sigmaTranslation(), worst_joint / kDeg,
+              largest_true / kDeg);
+  EXPECT_LT(et, 0.0005);
+  EXPECT_LT(er, 0.05 * kDeg);
+  EXPECT_LE(et, 3 * r.sigmaTranslation());
+  EXPECT_LT(worst_joint, 0.03 * kDeg);
+  EXPECT_LT(worst_joint, 0.5 * largest_true);
+
+  // (b) The head mount where it is drawn, held: exactly nominal; the target offset still found.
+  auto mount_true = error;
+  mount_true.head_mount_xyz.setZero();
+  mount_true.head_mount_rpy.setZero();
+  mount_true.marker_xyz = {0.0008, -0.0005, 0.0};
+  mount_true.marker_rpy = Eigen::Vector3d(0.3, -0.2, 0.0) * kDeg;
+  d.free_params = {"target_offset", "joint_offsets"};
+  const RobotModel mount_held(d);
+  const Simulated sim2 = simulate(mount_true, 6, 0.05);
+  const Result r2 = calibrate(mount_held, sim2.samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r2.success && r2.has_covariance) << r2.message;
+  EXPECT_EQ(r2.fixed_point.matrix(), d.head.mount.matrix());
+  EXPECT_EQ(r2.fixedPointStd(), (Eigen::Matrix<double, 6, 1>::Zero()));
+  const Eigen::Isometry3d marker_truth = sim2.truth.description().marker.pose;
+  const double mt = (r2.marker_offset.translation() - marker_truth.translation()).norm();
+  std::printf("head mount held: target offset %.4f mm / %.5f deg off the truth\n", mt * 1000,
+              angleBetween(r2.marker_offset, marker_truth) / kDeg);
+  EXPECT_LT(mt, 0.0005);
+  EXPECT_LT(angleBetween(r2.marker_offset, marker_truth), 0.05 * kDeg);
+}
+
 }  // namespace
 }  // namespace imagenets_calibration

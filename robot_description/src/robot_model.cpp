@@ -1,6 +1,8 @@
 #include "robot_description/robot_model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -60,6 +62,17 @@ std::vector<double> poseDeg(const YAML::Node& node, const std::string& key, cons
   return v;
 }
 
+// The key free_params (freeParams), checked against the description's joints.
+void readFreeParams(const YAML::Node& root, RobotDescription& d) {
+  const YAML::Node p = root["free_params"];
+  if (!p) return;
+  if (!p.IsSequence() || p.size() == 0) {
+    throw error(d.source + ": free_params", "expected a non-empty list of parameter names");
+  }
+  d.free_params = p.as<std::vector<std::string>>();
+  freeParams(d);
+}
+
 // A description whose kinematics are a URDF's (urdf_kinematics.h): `urdf` (relative to the YAML
 // file) and the links to read; the rest as in a DH description.
 RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
@@ -103,6 +116,7 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
     d.arm_home = poseDeg(arm, "home_deg", w + ": arm", d.arm);
     d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
     d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
+    readFreeParams(root, d);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());
   }
@@ -258,10 +272,56 @@ RobotDescription loadRobotDescription(const std::string& path) {
     d.right_camera_info = rel("right_camera_info");
     d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
     d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
+    readFreeParams(root, d);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());
   }
   return d;
+}
+
+namespace {
+
+// The names free_params may hold, and what each sets.
+std::vector<std::pair<std::string, std::function<void(FreeParams&)>>> freeParamNames(const RobotDescription& d) {
+  std::vector<std::pair<std::string, std::function<void(FreeParams&)>>> names;
+  names.emplace_back("fixed_point", [](FreeParams& f) { f.fixed_point = true; });
+  names.emplace_back("target_offset", [](FreeParams& f) { f.target_offset = true; });
+  std::vector<std::pair<bool, size_t>> joints;  // (arm, index) of the estimable offsets
+  for (size_t j = 1; j + 1 < d.arm.joints.size(); ++j) joints.push_back({true, j});
+  for (size_t j = 1; j < d.head.joints.size(); ++j) joints.push_back({false, j});
+  names.emplace_back("joint_offsets", [joints](FreeParams& f) {
+    for (const auto& [arm, j] : joints) (arm ? f.arm : f.head).push_back(j);
+  });
+  for (const auto& [arm, j] : joints) {
+    names.emplace_back((arm ? d.arm : d.head).joints[j].name, [arm = arm, j = j](FreeParams& f) { (arm ? f.arm : f.head).push_back(j); });
+  }
+  return names;
+}
+
+}  // namespace
+
+FreeParams freeParams(const RobotDescription& d) {
+  const auto names = freeParamNames(d);
+  FreeParams f;
+  if (d.free_params.empty()) {
+    for (const auto& n : names) n.second(f);
+  } else {
+    f.fixed_point = f.target_offset = false;
+  }
+  for (const std::string& p : d.free_params) {
+    auto it = std::find_if(names.begin(), names.end(), [&](const auto& n) { return n.first == p; });
+    if (it == names.end()) {
+      std::string known;
+      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n.first;
+      throw error(d.source + ": free_params", "unknown parameter '" + p + "' (known: " + known + ")");
+    }
+    it->second(f);
+  }
+  for (auto* v : {&f.arm, &f.head}) {
+    std::sort(v->begin(), v->end());
+    v->erase(std::unique(v->begin(), v->end()), v->end());
+  }
+  return f;
 }
 
 std::string exampleRobotDescriptionPath() {

@@ -118,3 +118,37 @@ TEST(RobotModel, CalibrationPoseShowsTheMarkerToBothCameras) {
   }
 }
 
+TEST(RobotModel, FreeParamsNameWhatACalibrationEstimatesAndRefuseUnknownNames) {
+  std::ifstream example(exampleRobotDescriptionPath());
+  const std::string text((std::istreambuf_iterator<char>(example)), std::istreambuf_iterator<char>());
+  // Absent: everything that can be estimated (arm joints 2..n-1, the head joints after the pan).
+  const RobotDescription all = loadRobotDescription(exampleRobotDescriptionPath());
+  const FreeParams every = freeParams(all);
+  EXPECT_TRUE(every.fixed_point && every.target_offset);
+  EXPECT_EQ(every.arm, (std::vector<size_t>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(every.head, (std::vector<size_t>{1}));
+  // Named: only those.
+  const std::string two = writeTemp(text + "\nfree_params: [fixed_point, " + all.arm.joints[2].name + "]\n");
+  const FreeParams some = freeParams(loadRobotDescription(two));
+  EXPECT_TRUE(some.fixed_point);
+  EXPECT_FALSE(some.target_offset);
+  EXPECT_EQ(some.arm, (std::vector<size_t>{2}));
+  EXPECT_TRUE(some.head.empty());
+  std::remove(two.c_str());
+  // An unknown name, and the first arm joint (whose offset no such calibration can tell from a
+  // turn of the head mount): errors naming the file, the key and the name.
+  for (const std::string& bad : {std::string("elbow"), all.arm.joints[0].name}) {
+    const std::string path = writeTemp(text + "\nfree_params: [fixed_point, " + bad + "]\n");
+    try {
+      loadRobotDescription(path);
+      ADD_FAILURE() << "expected an error for " << bad;
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(path + ": free_params"), std::string::npos) << what;
+      EXPECT_NE(what.find("unknown parameter '" + bad + "'"), std::string::npos) << what;
+      EXPECT_NE(what.find("known: fixed_point, target_offset, joint_offsets, " + all.arm.joints[1].name), std::string::npos)
+          << what;
+    }
+    std::remove(path.c_str());
+  }
+}
