@@ -289,6 +289,14 @@ Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions
   }
   if (valid.empty()) {
     r.samples = std::move(samples);
+    const bool seen = std::any_of(r.samples.begin(), r.samples.end(), [](const Sample& s) { return s.left.found || s.right.found; });
+    if (!seen && !r.samples.empty()) {
+      // Nothing to fit at all: say so first (wrong target file, target not mounted, camera covered).
+      r.message = "the target was never seen: in none of the " + std::to_string(r.samples.size()) +
+                  " samples' images (sample 0: " + r.rejection_reasons.front() + ")";
+      residuals(r.samples, Eigen::Isometry3d::Identity(), r);
+      return r;
+    }
     r.message = "no valid sample";
     if (!r.rejection_reasons.empty()) r.message += ": sample 0: " + r.rejection_reasons.front();
     residuals(r.samples, Eigen::Isometry3d::Identity(), r);
