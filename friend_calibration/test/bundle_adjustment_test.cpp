@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "imagenets_calibration/bundle_adjustment.h"
 #include "imagenets_calibration/calibration_msgs.h"
@@ -355,6 +356,133 @@ TEST_F(BundleAdjustmentTest, AGoodCalibrationIsNotOverwrittenByOneWithAnUncertai
   EXPECT_EQ(overwriteRefusal(good, file, 0.002), "");
   EXPECT_EQ(overwriteRefusal(noisy, file, 0.0), "");  // off
   std::filesystem::remove_all(dir);
+}
+
+// Each estimated parameter's standard deviation is the root of its own diagonal element of the
+// fit's posterior covariance (found by the parameter's name), in the result, in the file (written
+// and read back) and in the Calibrate response.
+TEST_F(BundleAdjustmentTest, EachEstimatedParameterHasItsStandardDeviationInTheFileAndTheResponse) {
+  const OneLoopFallback f = solveBothWays(*this, simulate(4, 0.05, 10).samples);
+  ASSERT_TRUE(f.ba.ok && f.ba.determined) << f.ba.message;
+  const Observability& o = f.ba.observability;
+  auto posterior = [&](const std::string& name) {
+    for (size_t i = 0; i < o.parameters.size(); ++i) {
+      if (o.parameters[i].name == name) return std::sqrt(o.covariance(i, i));
+    }
+    ADD_FAILURE() << "the fit has no parameter '" << name << "'";
+    return -1.0;
+  };
+  const char* axes[] = {"x", "y", "z", "rx", "ry", "rz"};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_DOUBLE_EQ(f.ba.fixedPointStd()[i], posterior(std::string("fixed point ") + axes[i]));
+    EXPECT_DOUBLE_EQ(f.ba.markerOffsetStd()[i], posterior(std::string("marker offset ") + axes[i]));
+    EXPECT_GT(f.ba.fixedPointStd()[i], 0.0);
+  }
+  const auto& arm = model.description().arm.joints;
+  const auto& head = model.description().head.joints;
+  for (size_t j = 1; j + 1 < arm.size(); ++j) EXPECT_DOUBLE_EQ(f.ba.arm_joint_offset_std[j], posterior(arm[j].name + " offset"));
+  EXPECT_DOUBLE_EQ(f.ba.head_joint_offset_std[1], posterior(head[1].name + " offset"));
+  EXPECT_EQ(f.ba.arm_joint_offset_std.front(), 0.0);  // not estimated
+  EXPECT_EQ(f.ba.head_joint_offset_std.front(), 0.0);
+  std::printf("1 sigma: fixed point x y z %.4f %.4f %.4f mm, rx ry rz %.5f %.5f %.5f deg; %s offset %.5f deg\n",
+              1000 * f.ba.fixedPointStd()[0], 1000 * f.ba.fixedPointStd()[1], 1000 * f.ba.fixedPointStd()[2],
+              f.ba.fixedPointStd()[3] / kDeg, f.ba.fixedPointStd()[4] / kDeg, f.ba.fixedPointStd()[5] / kDeg,
+              arm[1].name.c_str(), f.ba.arm_joint_offset_std[1] / kDeg);
+  // calibrate() ran the same fit (equal up to the solver's summation order).
+  const Result& r = f.calibrated;
+  EXPECT_LT((r.fixedPointStd() - f.ba.fixedPointStd()).norm(), 1e-6 * f.ba.fixedPointStd().norm());
+
+  const auto dir = std::filesystem::temp_directory_path() / ("std_dev_" + std::to_string(::getpid()));
+  StoredCalibration stored;
+  stored.result = r;
+  ASSERT_EQ(saveCalibration(stored, (dir / "c.yaml").string()), "");
+  const YAML::Node file = YAML::LoadFile((dir / "c.yaml").string());
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(file["fixed_point_std_dev"]["xyz"][i].as<double>(), r.fixedPointStd()[i]);
+    EXPECT_DOUBLE_EQ(file["fixed_point_std_dev"]["rotation"][i].as<double>(), r.fixedPointStd()[3 + i]);
+    EXPECT_DOUBLE_EQ(file["marker_offset_std_dev"]["xyz"][i].as<double>(), r.markerOffsetStd()[i]);
+    EXPECT_DOUBLE_EQ(file["marker_offset_std_dev"]["rotation"][i].as<double>(), r.markerOffsetStd()[3 + i]);
+  }
+  EXPECT_EQ(file["arm_joint_offset_std"].as<std::vector<double>>(), r.arm_joint_offset_std);
+  const Result loaded = loadCalibration((dir / "c.yaml").string()).result;
+  EXPECT_EQ(loaded.fixedPointStd(), r.fixedPointStd());
+  EXPECT_EQ(loaded.markerOffsetStd(), r.markerOffsetStd());
+  EXPECT_EQ(loaded.arm_joint_offset_std, r.arm_joint_offset_std);
+  EXPECT_EQ(loaded.head_joint_offset_std, r.head_joint_offset_std);
+  std::filesystem::remove_all(dir);
+
+  imagenets_calibration_msgs::Calibrate::Response response;
+  summarize(toMsg(r, "base_link", "pth_fixed_point"), response);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_DOUBLE_EQ(response.fixed_point_std_dev[i], r.fixedPointStd()[i]);
+    EXPECT_DOUBLE_EQ(response.marker_offset_std_dev[i], r.markerOffsetStd()[i]);
+  }
+  EXPECT_EQ(response.arm_joint_offset_std, r.arm_joint_offset_std);
+  EXPECT_EQ(response.head_joint_offset_std, r.head_joint_offset_std);
+}
+
+// free_params: a parameter held keeps its nominal value exactly (and has no uncertainty); the
+// others still converge to the truth.
+TEST_F(BundleAdjustmentTest, HeldParametersKeepTheirNominalValueAndTheOthersConverge) {
+  auto error = friend_hw_sim::loadTrueError(trueErrorFile(), model.description(), 5);
+  error.arm_joint_offsets.front() = error.arm_joint_offsets.back() = 0;
+  error.head_joint_offsets.front() = 0;
+  // (a) The target where it is drawn and arm joint 3 reading true: both held.
+  error.marker_xyz.setZero();
+  error.marker_rpy.setZero();
+  error.arm_joint_offsets[2] = 0;
+  auto d = model.description();
+  d.free_params = {"fixed_point"};
+  for (size_t j = 1; j + 1 < d.arm.joints.size(); ++j) {
+    if (j != 2) d.free_params.push_back(d.arm.joints[j].name);
+  }
+  d.free_params.push_back(d.head.joints[1].name);
+  const RobotModel held(d);
+  const Simulated sim = simulate(error, 5, 0.05);
+  const Result r = calibrate(held, sim.samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r.success && r.has_covariance) << r.message;
+  EXPECT_EQ(r.marker_offset.matrix(), d.marker.pose.matrix());
+  EXPECT_EQ(r.arm_joint_offsets[2], 0.0);
+  EXPECT_EQ(r.markerOffsetStd(), (Eigen::Matrix<double, 6, 1>::Zero()));
+  EXPECT_EQ(r.arm_joint_offset_std[2], 0.0);
+  EXPECT_GT(r.arm_joint_offset_std[1], 0.0);
+  const Eigen::Isometry3d truth = sim.truth.headBase();
+  const double et = (r.fixed_point.translation() - truth.translation()).norm(), er = angleBetween(r.fixed_point, truth);
+  // The joint offsets: from none (nominal) to within a small part of the largest true one.
+  double worst_joint = 0, largest_true = 0;
+  for (size_t j = 0; j < error.arm_joint_offsets.size(); ++j) {
+    worst_joint = std::max(worst_joint, std::abs(r.arm_joint_offsets[j] - error.arm_joint_offsets[j]));
+    largest_true = std::max(largest_true, std::abs(error.arm_joint_offsets[j]));
+  }
+  std::printf("target offset and %s held: fixed point %.4f mm / %.5f deg off the truth (3 sigma %.4f mm); joint "
+              "offsets within %.5f deg (largest true %.5f deg)\n",
+              d.arm.joints[2].name.c_str(), et * 1000, er / kDeg, 3000 * r.sigmaTranslation(), worst_joint / kDeg,
+              largest_true / kDeg);
+  EXPECT_LT(et, 0.0005);
+  EXPECT_LT(er, 0.05 * kDeg);
+  EXPECT_LE(et, 3 * r.sigmaTranslation());
+  EXPECT_LT(worst_joint, 0.03 * kDeg);
+  EXPECT_LT(worst_joint, 0.5 * largest_true);
+
+  // (b) The head mount where it is drawn, held: exactly nominal; the target offset still found.
+  auto mount_true = error;
+  mount_true.head_mount_xyz.setZero();
+  mount_true.head_mount_rpy.setZero();
+  mount_true.marker_xyz = {0.0008, -0.0005, 0.0};
+  mount_true.marker_rpy = Eigen::Vector3d(0.3, -0.2, 0.0) * kDeg;
+  d.free_params = {"target_offset", "joint_offsets"};
+  const RobotModel mount_held(d);
+  const Simulated sim2 = simulate(mount_true, 6, 0.05);
+  const Result r2 = calibrate(mount_held, sim2.samples, "joint", FusionLimits(), CombineOptions());
+  ASSERT_TRUE(r2.success && r2.has_covariance) << r2.message;
+  EXPECT_EQ(r2.fixed_point.matrix(), d.head.mount.matrix());
+  EXPECT_EQ(r2.fixedPointStd(), (Eigen::Matrix<double, 6, 1>::Zero()));
+  const Eigen::Isometry3d marker_truth = sim2.truth.description().marker.pose;
+  const double mt = (r2.marker_offset.translation() - marker_truth.translation()).norm();
+  std::printf("head mount held: target offset %.4f mm / %.5f deg off the truth\n", mt * 1000,
+              angleBetween(r2.marker_offset, marker_truth) / kDeg);
+  EXPECT_LT(mt, 0.0005);
+  EXPECT_LT(angleBetween(r2.marker_offset, marker_truth), 0.05 * kDeg);
 }
 
 }  // namespace

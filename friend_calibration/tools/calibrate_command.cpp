@@ -11,6 +11,7 @@
 #include "imagenets_calibration/bag_calibration.h"
 #include "imagenets_calibration/storage.h"
 #include "robot_description/robot_model.h"
+#include "robot_description/urdf_kinematics.h"
 
 namespace imagenets {
 namespace tool {
@@ -66,11 +67,15 @@ int calibrate(const Args& args) {
   double timeout = 30, target_mm = 0, target_deg = 0;
   imagenets_calibration::BagCalibrationOptions bag;
   std::string output;
+  bool urdf = false;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--bag") {
       bag.bag = flagValue(args, i);
     } else if (args[i] == "--config") {
       bag.description = flagValue(args, i);
+    } else if (args[i] == "--urdf") {
+      robot_description::useUrdfFile(flagValue(args, i));
+      urdf = true;
     } else if (args[i] == "--net") {
       bag.net = flagValue(args, i);
     } else if (args[i] == "--output" || args[i] == "-o") {
@@ -103,8 +108,8 @@ int calibrate(const Args& args) {
     if (!method.empty()) bag.method = method;
     return calibrateFromBag(bag, output);
   }
-  if (!bag.description.empty() || !bag.net.empty() || !output.empty() || !bag.settings.empty()) {
-    throw UsageError("--config, --net, --output and --set go with --bag");
+  if (!bag.description.empty() || !bag.net.empty() || !output.empty() || !bag.settings.empty() || urdf) {
+    throw UsageError("--config, --urdf, --net, --output and --set go with --bag");
   }
   if (poses < 0) throw UsageError("--poses must be >= 0");
   CalibrationClient client("imagenets_calibrate", timeout);
@@ -161,11 +166,12 @@ int calibrate(const Args& args) {
 }  // namespace
 
 IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--poses N] [--method paper|joint] [--target-mm MM] [--target-deg DEG] "
-                       "[--max-poses N] [--wait S] | calibrate --bag FILE.bag --config ROBOT.yaml [--net FILE] "
+                       "[--max-poses N] [--wait S] | calibrate --bag FILE.bag --config ROBOT.yaml [--urdf FILE] [--net FILE] "
                        "[--method paper|joint] [--set PROPERTY=VALUE ...] [--output FILE.yaml]",
                        "trigger the running friend_calibration node; print the fixed point (and its error in simulation); "
                        "--target-mm/--target-deg: more poses until the 3-sigma bound is within; --bag: calibrate offline "
-                       "from a rosbag (no robot, no master), the samples where arm and head stood still",
+                       "from a rosbag (no robot, no master), the samples where arm and head stood still; --urdf: the robot's URDF "
+                       "when the config names none",
                        calibrate);
 
 }  // namespace tool

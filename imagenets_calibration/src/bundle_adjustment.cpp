@@ -49,22 +49,17 @@ Eigen::Matrix<T, 2, 1> projectPoint(const PinholeCamera& c, const Eigen::Matrix<
   return {T(c.K(0, 0)) * xd + T(c.K(0, 1)) * yd + T(c.K(0, 2)), T(c.K(1, 1)) * yd + T(c.K(1, 2))};
 }
 
-// Which joints' zero offsets are estimated (as the joint method: arm 2..n-1, head tilt..n).
-struct OffsetLayout {
-  std::vector<size_t> arm, head;
-  explicit OffsetLayout(const RobotModel& m) {
-    const auto& d = m.description();
-    for (size_t j = 1; j + 1 < d.arm.joints.size(); ++j) arm.push_back(j);
-    for (size_t j = 1; j < d.head.joints.size(); ++j) head.push_back(j);
-  }
-};
+using robot_description::FreeParams;
 
 // The estimated parameters in the fit's order, named for the observability report: the fixed
 // point's and the marker offset's translation and rotation (about the parent frame's axes), then
 // the joint offsets by joint name.
-std::vector<std::string> parameterNames(const RobotModel& m, const OffsetLayout& layout) {
+// Parameters held at their nominal value (FreeParams) are not among them.
+std::vector<std::string> parameterNames(const RobotModel& m, const FreeParams& layout) {
   std::vector<std::string> names;
-  for (const char* frame : {"fixed point ", "marker offset "}) {
+  const std::pair<const char*, bool> frames[] = {{"fixed point ", layout.fixed_point}, {"marker offset ", layout.target_offset}};
+  for (const auto& [frame, free] : frames) {
+    if (!free) continue;
     for (const char* axis : {"x", "y", "z", "rx", "ry", "rz"}) names.push_back(std::string(frame) + axis);
   }
   for (size_t j : layout.arm) names.push_back(m.description().arm.joints[j].name + " offset");
@@ -73,10 +68,10 @@ std::vector<std::string> parameterNames(const RobotModel& m, const OffsetLayout&
 }
 // What is known before the fit: the marker offset and the joint offsets their priors; the fixed
 // point (no prior in the fit) is judged against the same mounting tolerance as the marker.
-std::vector<double> priorStd(const OffsetLayout& layout, double translation, double rotation, double offset) {
+std::vector<double> priorStd(const FreeParams& layout, double translation, double rotation, double offset) {
   std::vector<double> p;
-  for (int frame = 0; frame < 2; ++frame) {
-    for (int i = 0; i < 6; ++i) p.push_back(i < 3 ? translation : rotation);
+  for (bool free : {layout.fixed_point, layout.target_offset}) {
+    for (int i = 0; free && i < 6; ++i) p.push_back(i < 3 ? translation : rotation);
   }
   p.resize(p.size() + layout.arm.size() + layout.head.size(), offset);
   return p;
@@ -94,7 +89,7 @@ Eigen::MatrixXd denseOf(const ceres::CRSMatrix& crs) {
 // offset (6), then the arm offsets and the head offsets when there are any.
 struct DetectionResidual {
   const RobotModel* model;
-  const OffsetLayout* layout;
+  const FreeParams* layout;
   const PinholeCamera* camera;
   const Sample* sample;
   bool right;
@@ -220,27 +215,26 @@ std::vector<Eigen::Vector3d> markerDefinedPoints(double size, double border) {
   return {{-o, o, 0}, {o, o, 0}, {o, -o, 0}, {-o, -o, 0}, {-i, i, 0}, {i, i, 0}, {i, -i, 0}, {-i, -i, 0}};
 }
 
-BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& cameras,
-                              const std::vector<Eigen::Vector3d>& marker_points, const std::vector<const Sample*>& samples,
-                              const Result& start, double max_reprojection_error, const BundleAdjustmentOptions& options) {
-  BundleAdjustment out;
-  const OffsetLayout layout(model);
-  const auto& d = model.description();
-  // The detections to fit: usable (as the chain uses them) and with points that fit their pose.
-  struct Use {
-    const Sample* sample;
-    bool right;
-  };
+namespace {
+
+// One detection the fit uses.
+struct Use {
+  const Sample* sample;
+  bool right;
+  const MarkerObservation& observation() const { return right ? sample->right : sample->left; }
+};
+
+// The detections to fit: usable (as the chain uses them) and with points that fit their pose
+// through the camera model; `mismatched` counts those that do not.
+std::vector<Use> detectionsToFit(const StereoCameras& cameras, const std::vector<Eigen::Vector3d>& marker_points,
+                                 const std::vector<const Sample*>& samples, double max_reprojection_error,
+                                 const BundleAdjustmentOptions& options, int& mismatched) {
   std::vector<Use> uses;
-  int mismatched = 0;
-  // A detection's points on the target: its own (a target's corners with ids), else the marker's.
-  auto targetPoints = [&](const MarkerObservation& o) -> const std::vector<Eigen::Vector3d>& {
-    return o.object_points.empty() ? marker_points : o.object_points;
-  };
   for (const Sample* s : samples) {
     for (bool right : {false, true}) {
-      const MarkerObservation& o = right ? s->right : s->left;
-      const std::vector<Eigen::Vector3d>& points = targetPoints(o);
+      const Use u{s, right};
+      const MarkerObservation& o = u.observation();
+      const std::vector<Eigen::Vector3d>& points = o.object_points.empty() ? marker_points : o.object_points;
       if (!o.found || o.reprojection_error > max_reprojection_error || o.points.size() != points.size() || points.size() < 4) {
         continue;
       }
@@ -248,159 +242,233 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
         ++mismatched;
         continue;
       }
-      uses.push_back({s, right});
+      uses.push_back(u);
     }
   }
-  if (uses.size() < 3) {
-    out.message = "pixel-level fit skipped: " + std::to_string(uses.size()) + " detections with points that fit the camera model (" +
-                  std::to_string(mismatched) + " do not)";
-    return out;
+  return uses;
+}
+
+// The fit itself: its parameters are perturbations of `start` (fixed point, marker offset) and the
+// free joint offsets; those held (FreeParams) stay at the start, which is their nominal value.
+class PixelFit {
+ public:
+  static constexpr double kPriorTranslation = 0.03, kPriorRotation = 0.175, kPriorOffset = 0.0035;  // as solveJointly
+
+  PixelFit(const RobotModel& model, const StereoCameras& cameras, const std::vector<Eigen::Vector3d>& marker_points,
+           std::vector<Use> uses, const Result& start, const BundleAdjustmentOptions& options)
+      : model_(model), cameras_(cameras), marker_points_(marker_points), uses_(std::move(uses)), start_(start),
+        options_(options), layout_(robot_description::freeParams(model.description())) {
+    const auto& d = model.description();
+    arm_full_ = start.arm_joint_offsets;
+    head_full_ = start.head_joint_offsets;
+    arm_full_.resize(d.arm.joints.size(), 0.0);
+    head_full_.resize(d.head.joints.size(), 0.0);
+    for (size_t j : layout_.arm) arm_.push_back(arm_full_[j]);
+    for (size_t j : layout_.head) head_.push_back(head_full_[j]);
   }
 
-  // Start: the joint method's solution; parameters are perturbations of it.
-  std::vector<double> arm_full = start.arm_joint_offsets, head_full = start.head_joint_offsets;
-  arm_full.resize(d.arm.joints.size(), 0.0);
-  head_full.resize(d.head.joints.size(), 0.0);
-  double x[6] = {0, 0, 0, 0, 0, 0}, m[6] = {0, 0, 0, 0, 0, 0};
-  std::vector<double> arm(layout.arm.size()), head(layout.head.size());
-  for (size_t i = 0; i < layout.arm.size(); ++i) arm[i] = arm_full[layout.arm[i]];
-  for (size_t i = 0; i < layout.head.size(); ++i) head[i] = head_full[layout.head[i]];
-  const double prior_translation = 0.03, prior_rotation = 0.175, prior_offset = 0.0035;  // as solveJointly
-  Eigen::MatrixXd jacobian;
-  int data_rows = 0;
-  auto solve = [&](double sigma, bool with_covariance) {
+  // Solves with point noise `sigma` (px); with the covariance, keeps the whitened Jacobian at the
+  // solution. False with `why` when the solver gives no usable solution.
+  bool solve(double sigma, bool with_covariance, std::string& why) {
     ceres::Problem problem;
     std::vector<ceres::ResidualBlockId> data_ids, prior_ids;
-    std::vector<double*> blocks{x, m};
-    if (!arm.empty()) blocks.push_back(arm.data());
-    if (!head.empty()) blocks.push_back(head.data());
-    for (const Use& u : uses) {
-      const MarkerObservation& o = u.right ? u.sample->right : u.sample->left;
-      auto* f = new DetectionResidual{&model, &layout, u.right ? &cameras.right : &cameras.left, u.sample, u.right,
-                                      targetPoints(o), o.points, start.fixed_point, start.marker_offset, sigma, true,
-                                      options.huber_sigmas};
-      // Stride 18: FRIEND's 18 parameters in one pass of dual numbers.
-      auto* cost = new ceres::DynamicAutoDiffCostFunction<DetectionResidual, 18>(f);
-      cost->AddParameterBlock(6);
-      cost->AddParameterBlock(6);
-      if (!arm.empty()) cost->AddParameterBlock(static_cast<int>(arm.size()));
-      if (!head.empty()) cost->AddParameterBlock(static_cast<int>(head.size()));
-      cost->SetNumResiduals(static_cast<int>(2 * o.points.size()));
-      data_ids.push_back(problem.AddResidualBlock(cost, nullptr, blocks));
-    }
-    prior_ids.push_back(problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<MarkerPrior, 6, 6>(
-            new MarkerPrior{start.marker_offset, d.marker.pose, prior_translation, prior_rotation}),
-        nullptr, m));
-    for (auto* values : {&arm, &head}) {
-      if (values->empty()) continue;
-      auto* prior = new ceres::DynamicAutoDiffCostFunction<OffsetPrior, 8>(
-          new OffsetPrior{static_cast<int>(values->size()), prior_offset});
-      prior->AddParameterBlock(static_cast<int>(values->size()));
-      prior->SetNumResiduals(static_cast<int>(values->size()));
-      prior_ids.push_back(problem.AddResidualBlock(prior, nullptr, values->data()));
-    }
+    std::vector<double*> blocks{x_, m_};
+    if (!arm_.empty()) blocks.push_back(arm_.data());
+    if (!head_.empty()) blocks.push_back(head_.data());
+    for (const Use& u : uses_) data_ids.push_back(problem.AddResidualBlock(detectionCost(u, sigma), nullptr, blocks));
+    addPriors(problem, prior_ids);
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
-    so.max_num_iterations = options.max_iterations;
+    so.max_num_iterations = options_.max_iterations;
     so.function_tolerance = 1e-12;
     so.parameter_tolerance = 1e-12;
     so.num_threads = 1;
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
     if (!summary.IsSolutionUsable()) {
-      out.message = "pixel-level fit failed: " + summary.message;
+      why = "pixel-level fit failed: " + summary.message;
       return false;
     }
-    if (!with_covariance) return true;
-    // The whitened Jacobian at the solution (measurements first, then the priors): the posterior
-    // covariance and which parameters the poses determine (observability.h).
+    if (with_covariance) keepJacobian(problem, blocks, data_ids, prior_ids);
+    return true;
+  }
+
+  // Pixel residuals of the current parameters (px), to estimate the noise.
+  std::vector<double> pixelResiduals() const {
+    std::vector<double> r;
+    const double* p[4] = {x_, m_, arm_.empty() ? head_.data() : arm_.data(), head_.data()};
+    for (const Use& u : uses_) {
+      const DetectionResidual f = residualOf(u, 1.0, false);
+      std::vector<double> e(2 * u.observation().points.size());
+      f(p, e.data());
+      r.insert(r.end(), e.begin(), e.end());
+    }
+    return r;
+  }
+
+  int parameterCount() const {
+    return 6 * (layout_.fixed_point + layout_.target_offset) + static_cast<int>(arm_.size() + head_.size());
+  }
+
+  // Observability and uncertainty at the solution (`variance_factor`: see bundleAdjust), then the
+  // solution as frames and full-length joint offsets.
+  void takeResult(double variance_factor, BundleAdjustment& out) const {
+    out.observability = analyseObservability(jacobian_, data_rows_, parameterNames(model_, layout_),
+                                             priorStd(layout_, kPriorTranslation, kPriorRotation, kPriorOffset),
+                                             variance_factor);
+    takeUncertainty(out);
+    auto apply = [](const Eigen::Isometry3d& base, const double* p) {
+      Eigen::Isometry3d t = base;
+      const Eigen::Vector3d w(p[3], p[4], p[5]);
+      if (w.norm() > 0) t.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix() * base.rotation();
+      t.translation() = base.translation() + Eigen::Vector3d(p[0], p[1], p[2]);
+      return t;
+    };
+    out.fixed_point = apply(start_.fixed_point, x_);
+    out.marker_offset = apply(start_.marker_offset, m_);
+    out.arm_joint_offsets = arm_full_;
+    out.head_joint_offsets = head_full_;
+    for (size_t i = 0; i < layout_.arm.size(); ++i) out.arm_joint_offsets[layout_.arm[i]] = arm_[i];
+    for (size_t i = 0; i < layout_.head.size(); ++i) out.head_joint_offsets[layout_.head[i]] = head_[i];
+    // (A fixed point held at its nominal value needs no determining.)
+    out.determined = !layout_.fixed_point || (3 * std::sqrt(out.fixed_point_covariance.topLeftCorner<3, 3>().trace()) <
+                                                  kPriorTranslation &&
+                                              out.fixed_point_covariance.trace() > 0);
+  }
+
+ private:
+  DetectionResidual residualOf(const Use& u, double sigma, bool robust) const {
+    const MarkerObservation& o = u.observation();
+    return DetectionResidual{&model_, &layout_, u.right ? &cameras_.right : &cameras_.left, u.sample, u.right,
+                             o.object_points.empty() ? marker_points_ : o.object_points, o.points, start_.fixed_point,
+                             start_.marker_offset, sigma, robust, options_.huber_sigmas};
+  }
+
+  ceres::CostFunction* detectionCost(const Use& u, double sigma) const {
+    // Stride 18: FRIEND's 18 parameters in one pass of dual numbers.
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<DetectionResidual, 18>(new DetectionResidual(residualOf(u, sigma, true)));
+    cost->AddParameterBlock(6);
+    cost->AddParameterBlock(6);
+    if (!arm_.empty()) cost->AddParameterBlock(static_cast<int>(arm_.size()));
+    if (!head_.empty()) cost->AddParameterBlock(static_cast<int>(head_.size()));
+    cost->SetNumResiduals(static_cast<int>(2 * u.observation().points.size()));
+    return cost;
+  }
+
+  // The held parameters constant; weak priors on the free marker offset and joint offsets.
+  void addPriors(ceres::Problem& problem, std::vector<ceres::ResidualBlockId>& prior_ids) {
+    if (!layout_.fixed_point) problem.SetParameterBlockConstant(x_);
+    if (layout_.target_offset) {
+      prior_ids.push_back(problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<MarkerPrior, 6, 6>(
+              new MarkerPrior{start_.marker_offset, model_.description().marker.pose, kPriorTranslation, kPriorRotation}),
+          nullptr, m_));
+    } else {
+      problem.SetParameterBlockConstant(m_);
+    }
+    for (auto* values : {&arm_, &head_}) {
+      if (values->empty()) continue;
+      auto* prior = new ceres::DynamicAutoDiffCostFunction<OffsetPrior, 8>(
+          new OffsetPrior{static_cast<int>(values->size()), kPriorOffset});
+      prior->AddParameterBlock(static_cast<int>(values->size()));
+      prior->SetNumResiduals(static_cast<int>(values->size()));
+      prior_ids.push_back(problem.AddResidualBlock(prior, nullptr, values->data()));
+    }
+  }
+
+  // The whitened Jacobian at the solution over the free parameters (measurements first, then the
+  // priors): the posterior covariance and which parameters the poses determine (observability.h).
+  void keepJacobian(ceres::Problem& problem, std::vector<double*> blocks, const std::vector<ceres::ResidualBlockId>& data_ids,
+                    const std::vector<ceres::ResidualBlockId>& prior_ids) {
+    blocks.erase(std::remove_if(blocks.begin(), blocks.end(), [&](double* b) { return problem.IsParameterBlockConstant(b); }),
+                 blocks.end());
     ceres::Problem::EvaluateOptions eo;
     eo.parameter_blocks = blocks;
     eo.residual_blocks = data_ids;
     eo.residual_blocks.insert(eo.residual_blocks.end(), prior_ids.begin(), prior_ids.end());
     ceres::CRSMatrix crs;
     problem.Evaluate(eo, nullptr, nullptr, nullptr, &crs);
-    jacobian = denseOf(crs);
-    data_rows = 0;
-    for (const Use& u : uses) data_rows += static_cast<int>(2 * (u.right ? u.sample->right : u.sample->left).points.size());
-    return true;
-  };
-  // Pixel residuals of the current parameters (px), to estimate the noise.
-  auto pixelResiduals = [&]() {
-    std::vector<double> r;
-    const double* p[4] = {x, m, arm.empty() ? head.data() : arm.data(), head.data()};
-    for (const Use& u : uses) {
-      const MarkerObservation& o = u.right ? u.sample->right : u.sample->left;
-      DetectionResidual f{&model, &layout, u.right ? &cameras.right : &cameras.left, u.sample, u.right,
-                          targetPoints(o), o.points, start.fixed_point, start.marker_offset, 1.0, false, 0.0};
-      std::vector<double> e(2 * o.points.size());
-      f(p, e.data());
-      r.insert(r.end(), e.begin(), e.end());
-    }
-    return r;
-  };
+    jacobian_ = denseOf(crs);
+    data_rows_ = 0;
+    for (const Use& u : uses_) data_rows_ += static_cast<int>(2 * u.observation().points.size());
+  }
 
+  // The posterior covariance (over the free parameters in the fit's order) as the Uncertainty of
+  // every parameter: zero for those held at their nominal value.
+  void takeUncertainty(BundleAdjustment& out) const {
+    const auto& d = model_.description();
+    const Eigen::MatrixXd& c = out.observability.covariance;
+    out.unobservable = out.observability.unobservable;
+    out.condition_number = out.observability.condition_number;
+    out.has_covariance = out.observability.computed();
+    Eigen::Index k = 0;
+    if (layout_.fixed_point) {
+      out.fixed_point_covariance = c.block<6, 6>(k, k);
+      k += 6;
+    }
+    if (layout_.target_offset) {
+      out.marker_offset_covariance = c.block<6, 6>(k, k);
+      k += 6;
+    }
+    out.arm_joint_offset_std.assign(d.arm.joints.size(), 0.0);
+    out.head_joint_offset_std.assign(d.head.joints.size(), 0.0);
+    for (size_t j : layout_.arm) out.arm_joint_offset_std[j] = std::sqrt(c(k, k)), ++k;
+    for (size_t j : layout_.head) out.head_joint_offset_std[j] = std::sqrt(c(k, k)), ++k;
+  }
+
+  const RobotModel& model_;
+  const StereoCameras& cameras_;
+  const std::vector<Eigen::Vector3d>& marker_points_;
+  const std::vector<Use> uses_;
+  const Result& start_;
+  const BundleAdjustmentOptions& options_;
+  const FreeParams layout_;
+  double x_[6] = {0, 0, 0, 0, 0, 0}, m_[6] = {0, 0, 0, 0, 0, 0};
+  std::vector<double> arm_full_, head_full_, arm_, head_;
+  Eigen::MatrixXd jacobian_;
+  int data_rows_ = 0;
+};
+
+}  // namespace
+
+BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& cameras,
+                              const std::vector<Eigen::Vector3d>& marker_points, const std::vector<const Sample*>& samples,
+                              const Result& start, double max_reprojection_error, const BundleAdjustmentOptions& options) {
+  BundleAdjustment out;
+  int mismatched = 0;
+  std::vector<Use> uses = detectionsToFit(cameras, marker_points, samples, max_reprojection_error, options, mismatched);
+  if (uses.size() < 3) {
+    out.message = "pixel-level fit skipped: " + std::to_string(uses.size()) + " detections with points that fit the camera model (" +
+                  std::to_string(mismatched) + " do not)";
+    return out;
+  }
+  out.observations = static_cast<int>(uses.size());
+  PixelFit fit(model, cameras, marker_points, std::move(uses), start, options);
   // First with a nominal noise of 0.1 px, then once more with the noise the residuals show (the
   // Huber threshold and the priors' weight depend on it), and the covariance there.
   // (Or with the noise the options give, e.g. when predicting what poses will determine.)
-  if (!solve(options.noise_sigma > 0 ? options.noise_sigma : 0.1, false)) return out;
-  std::vector<double> r = pixelResiduals();
+  if (!fit.solve(options.noise_sigma > 0 ? options.noise_sigma : 0.1, false, out.message)) return out;
+  std::vector<double> r = fit.pixelResiduals();
   std::vector<double> abs_r(r.size());
   std::transform(r.begin(), r.end(), abs_r.begin(), [](double v) { return std::abs(v); });
   const double sigma =
       options.noise_sigma > 0 ? options.noise_sigma : std::max(0.005, 1.4826 * imagenets::frames::median(abs_r));
-  if (!solve(sigma, true)) return out;
-  r = pixelResiduals();
+  if (!fit.solve(sigma, true, out.message)) return out;
+  r = fit.pixelResiduals();
   double ss = 0;
   for (double v : r) ss += v * v;
-  const int n_params = 12 + static_cast<int>(arm.size() + head.size());
   out.noise_sigma = sigma;
   out.reprojection_rms = std::sqrt(ss / r.size());
-  out.observations = static_cast<int>(uses.size());
   // Honest scale: the covariance assumed noise `sigma`; if the residuals' variance (per degree of
   // freedom) is larger, the uncertainty is too.
-  const double variance_factor = std::max(1.0, ss / std::max(1, static_cast<int>(r.size()) - n_params) / (sigma * sigma));
-  out.observability = analyseObservability(jacobian, data_rows, parameterNames(model, layout),
-                                           priorStd(layout, prior_translation, prior_rotation, prior_offset),
-                                           variance_factor);
-  const Eigen::MatrixXd& c = out.observability.covariance;
-  out.unobservable = out.observability.unobservable;
-  out.condition_number = out.observability.condition_number;
-  out.fixed_point_covariance = c.block<6, 6>(0, 0);
-  out.marker_offset_covariance = c.block<6, 6>(6, 6);
-  out.arm_joint_offset_std.assign(d.arm.joints.size(), 0.0);
-  out.head_joint_offset_std.assign(d.head.joints.size(), 0.0);
-  for (size_t i = 0; i < layout.arm.size(); ++i) out.arm_joint_offset_std[layout.arm[i]] = std::sqrt(c(12 + i, 12 + i));
-  for (size_t i = 0; i < layout.head.size(); ++i) {
-    const size_t k = 12 + layout.arm.size() + i;
-    out.head_joint_offset_std[layout.head[i]] = std::sqrt(c(k, k));
-  }
-
-  // The solution as frames.
-  const Eigen::Isometry3d x_start = start.fixed_point, m_start = start.marker_offset;
-  auto apply = [](const Eigen::Isometry3d& base, const double* p) {
-    Eigen::Isometry3d t = base;
-    const Eigen::Vector3d w(p[3], p[4], p[5]);
-    if (w.norm() > 0) t.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix() * base.rotation();
-    t.translation() = base.translation() + Eigen::Vector3d(p[0], p[1], p[2]);
-    return t;
-  };
-  out.fixed_point = apply(x_start, x);
-  out.marker_offset = apply(m_start, m);
-  out.arm_joint_offsets = arm_full;
-  out.head_joint_offsets = head_full;
-  for (size_t i = 0; i < layout.arm.size(); ++i) out.arm_joint_offsets[layout.arm[i]] = arm[i];
-  for (size_t i = 0; i < layout.head.size(); ++i) out.head_joint_offsets[layout.head[i]] = head[i];
-  out.has_covariance = out.fixed_point_covariance.trace() > 0;
-  out.determined = 3 * std::sqrt(out.fixed_point_covariance.topLeftCorner<3, 3>().trace()) < prior_translation &&
-                   out.fixed_point_covariance.trace() > 0;
+  const double variance_factor =
+      std::max(1.0, ss / std::max(1, static_cast<int>(r.size()) - fit.parameterCount()) / (sigma * sigma));
+  fit.takeResult(variance_factor, out);
   out.ok = true;
   char b[200];
   std::snprintf(b, sizeof b, "pixel-level bundle adjustment of %d detections: %.3f px RMS (noise %.3f px)", out.observations,
                 out.reprojection_rms, sigma);
-  if (out.message.empty()) out.message = b;
-  else out.message = std::string(b) + "; " + out.message;
+  out.message = b;
   return out;
 }
 

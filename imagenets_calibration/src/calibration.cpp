@@ -289,6 +289,14 @@ Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions
   }
   if (valid.empty()) {
     r.samples = std::move(samples);
+    const bool seen = std::any_of(r.samples.begin(), r.samples.end(), [](const Sample& s) { return s.left.found || s.right.found; });
+    if (!seen && !r.samples.empty()) {
+      // Nothing to fit at all: say so first (wrong target file, target not mounted, camera covered).
+      r.message = "the target was never seen: in none of the " + std::to_string(r.samples.size()) +
+                  " samples' images (sample 0: " + r.rejection_reasons.front() + ")";
+      residuals(r.samples, Eigen::Isometry3d::Identity(), r);
+      return r;
+    }
     r.message = "no valid sample";
     if (!r.rejection_reasons.empty()) r.message += ": sample 0: " + r.rejection_reasons.front();
     residuals(r.samples, Eigen::Isometry3d::Identity(), r);
@@ -359,75 +367,49 @@ RobotModel calibratedModel(const RobotModel& nominal, const Result& result) {
   return RobotModel(std::move(d));
 }
 
-Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits) {
-  Result r = paper;
-  r.method = "joint";
-  if (!paper.success) return r;
-  const Eigen::Isometry3d m_nominal = model.description().marker.pose;
-  const size_t n_arm = model.description().arm.joints.size(), n_head = model.description().head.joints.size();
-  // Identifiable joint offsets: arm joints 2..n-1 and the head's tilt (see the header).
-  std::vector<std::pair<bool, size_t>> offsets;  // (is arm, joint index)
-  for (size_t j = 1; j + 1 < n_arm; ++j) offsets.push_back({true, j});
-  for (size_t j = 1; j < n_head; ++j) offsets.push_back({false, j});
-  const int n_params = 12 + static_cast<int>(offsets.size());
-  // Corner and centre points of the marker (its frame), where the residuals are measured.
-  const double h = model.description().marker_size / 2;
-  const std::vector<Eigen::Vector3d> points{{0, 0, 0}, {-h, h, 0}, {h, h, 0}, {h, -h, 0}, {-h, -h, 0}};
-  const double sigma_point = 0.0002;       // m: expected measurement noise of a marker point
-  const double prior_translation = 0.03;   // m: weak prior on the marker offset
-  const double prior_rotation = 0.175;     // rad (10 deg)
-  const double prior_offset = 0.0035;      // rad (0.2 deg): encoder zero offsets are small
+namespace {
 
-  std::vector<const Sample*> used;
-  std::vector<int> used_index = paper.used;
-  for (int i : used_index) used.push_back(&paper.samples[i]);
-  int n_res = 0;
+// The joint method's least squares (solveJointly): Levenberg-Marquardt over the free parameters
+// (FreeParams) with a numeric Jacobian; the held ones stay at their nominal value.
+class JointLeastSquares {
+ public:
   struct State {
     Eigen::Isometry3d x, m;
     std::vector<double> arm, head;
   };
-  auto residual = [&](const State& st) {
-    const RobotModel mdl = withJointOffsets(model, st.arm, st.head);
-    n_res = static_cast<int>(used.size() * points.size() * 3 + 6 + offsets.size());
-    Eigen::VectorXd e(n_res);
-    int k = 0;
-    for (const Sample* s : used) {
-      const Eigen::Isometry3d seen = st.x * headChain(mdl, s->head_q) * s->marker_in_left, kin = mdl.tcp(s->arm_q) * st.m;
-      for (const auto& p : points) {
-        e.segment<3>(k) = (seen * p - kin * p) / sigma_point;
-        k += 3;
-      }
+
+  JointLeastSquares(const RobotModel& model, const Result& paper)
+      : model_(model), free_(robot_description::freeParams(model.description())),
+        m_nominal_(model.description().marker.pose) {
+    // The full parameter vector: fixed point (6), marker offset (6), the free joint offsets; the
+    // columns estimated are those of the free parameters.
+    for (size_t j : free_.arm) offsets_.push_back({true, j});
+    for (size_t j : free_.head) offsets_.push_back({false, j});
+    for (int c = 0; c < 12 + static_cast<int>(offsets_.size()); ++c) {
+      if ((c < 6 && free_.fixed_point) || (c >= 6 && c < 12 && free_.target_offset) || c >= 12) columns_.push_back(c);
     }
-    const Eigen::Isometry3d dm = m_nominal.inverse() * st.m;
-    e.segment<3>(k) = dm.translation() / prior_translation;
-    e.segment<3>(k + 3) = logRotation(dm.rotation()) / prior_rotation;
-    k += 6;
-    for (const auto& o : offsets) e[k++] = (o.first ? st.arm[o.second] : st.head[o.second]) / prior_offset;
-    return e;
-  };
-  auto apply = [&](const State& st, const Eigen::VectorXd& d) {
-    State out = st;
-    out.x = perturb(st.x, d.segment<6>(0));
-    out.m = perturb(st.m, d.segment<6>(6));
-    for (size_t i = 0; i < offsets.size(); ++i) {
-      (offsets[i].first ? out.arm[offsets[i].second] : out.head[offsets[i].second]) += d[12 + i];
-    }
-    return out;
-  };
-  // Levenberg-Marquardt from `st` over the samples in `used`.
-  auto fit = [&](State st) {
+    // Corner and centre points of the marker (its frame), where the residuals are measured.
+    const double h = model.description().marker_size / 2;
+    points_ = {{0, 0, 0}, {-h, h, 0}, {h, h, 0}, {h, -h, 0}, {-h, -h, 0}};
+    used_index_ = paper.used;
+    for (int i : used_index_) used_.push_back(&paper.samples[i]);
+  }
+
+  // Where the fit starts: the paper method's fixed point (the nominal one when held), the nominal
+  // marker offset, no joint offsets.
+  State start(const Result& paper) const {
+    return State{free_.fixed_point ? paper.fixed_point : model_.headBase(), m_nominal_,
+                 std::vector<double>(model_.description().arm.joints.size(), 0.0),
+                 std::vector<double>(model_.description().head.joints.size(), 0.0)};
+  }
+
+  // Levenberg-Marquardt from `st` over the samples in use.
+  State fit(State st) const {
     double cost = residual(st).squaredNorm();
-    const int n_res_now = n_res;
     double lambda = 1e-3;
     for (int iter = 0; iter < 50; ++iter) {
       const Eigen::VectorXd e0 = residual(st);
-      Eigen::MatrixXd j(n_res_now, n_params);
-      const double step = 1e-7;
-      for (int c = 0; c < n_params; ++c) {
-        Eigen::VectorXd d = Eigen::VectorXd::Zero(n_params);
-        d[c] = step;
-        j.col(c) = (residual(apply(st, d)) - e0) / step;
-      }
+      const Eigen::MatrixXd j = jacobian(st, e0);
       const Eigen::MatrixXd jtj = j.transpose() * j;
       const Eigen::VectorXd g = j.transpose() * e0;
       bool improved = false;
@@ -435,8 +417,7 @@ Result solveJointly(const RobotModel& model, const Result& paper, const FusionLi
       for (int tries = 0; tries < 10 && !improved; ++tries) {
         Eigen::MatrixXd a = jtj;
         a.diagonal() += lambda * jtj.diagonal().cwiseMax(1e-9);
-        const Eigen::VectorXd delta = -a.ldlt().solve(g);
-        const State next = apply(st, delta);
+        const State next = apply(st, -a.ldlt().solve(g));
         const double c1 = residual(next).squaredNorm();
         if (c1 < cost) {
           gain = cost - c1;
@@ -451,33 +432,111 @@ Result solveJointly(const RobotModel& model, const Result& paper, const FusionLi
       if (!improved || gain < 1e-12 * std::max(1.0, cost)) break;
     }
     return st;
-  };
-  State st = fit(State{paper.fixed_point, m_nominal, std::vector<double>(n_arm, 0.0), std::vector<double>(n_head, 0.0)});
-  // A spurious detection that passed the per-sample checks shows as a sample that the joint model
-  // cannot explain: drop the worst while its RMS point residual is far above the others'.
-  std::vector<std::pair<int, double>> dropped;
-  const size_t max_drops = used.size() / 3;
-  while (dropped.size() < max_drops && used.size() > 2) {
-    const Eigen::VectorXd e = residual(st) * sigma_point;
-    std::vector<double> rms(used.size());
-    for (size_t k = 0; k < used.size(); ++k) {
-      rms[k] = e.segment(static_cast<int>(k * points.size() * 3), static_cast<int>(points.size() * 3)).norm() /
-               std::sqrt(static_cast<double>(points.size()));
-    }
-    const size_t worst = static_cast<size_t>(std::max_element(rms.begin(), rms.end()) - rms.begin());
-    const double limit = std::max(0.0003, 5.0 * imagenets::frames::median(rms));
-    if (rms[worst] <= limit) break;
-    dropped.push_back({used_index[worst], rms[worst]});
-    used.erase(used.begin() + worst);
-    used_index.erase(used_index.begin() + worst);
-    st = fit(st);
   }
-  for (const auto& d : dropped) {
+
+  // A spurious detection that passed the per-sample checks shows as a sample that the joint model
+  // cannot explain: drops the worst while its RMS point residual is far above the others' (at
+  // most a third of the samples), refitting each time. Returns (sample index, RMS m) dropped.
+  std::vector<std::pair<int, double>> dropOutliers(State& st) {
+    std::vector<std::pair<int, double>> dropped;
+    const size_t max_drops = used_.size() / 3;
+    while (dropped.size() < max_drops && used_.size() > 2) {
+      const Eigen::VectorXd e = residual(st) * kSigmaPoint;
+      const size_t per_sample = points_.size() * 3;
+      std::vector<double> rms(used_.size());
+      for (size_t k = 0; k < used_.size(); ++k) {
+        rms[k] = e.segment(static_cast<int>(k * per_sample), static_cast<int>(per_sample)).norm() /
+                 std::sqrt(static_cast<double>(points_.size()));
+      }
+      const size_t worst = static_cast<size_t>(std::max_element(rms.begin(), rms.end()) - rms.begin());
+      if (rms[worst] <= std::max(0.0003, 5.0 * imagenets::frames::median(rms))) break;
+      dropped.push_back({used_index_[worst], rms[worst]});
+      used_.erase(used_.begin() + worst);
+      used_index_.erase(used_index_.begin() + worst);
+      st = fit(st);
+    }
+    return dropped;
+  }
+
+  const Eigen::Isometry3d& nominalMarker() const { return m_nominal_; }
+  bool fixedPointFree() const { return free_.fixed_point; }
+
+ private:
+  static constexpr double kSigmaPoint = 0.0002;       // m: expected measurement noise of a marker point
+  static constexpr double kPriorTranslation = 0.03;   // m: weak prior on the marker offset
+  static constexpr double kPriorRotation = 0.175;     // rad (10 deg)
+  static constexpr double kPriorOffset = 0.0035;      // rad (0.2 deg): encoder zero offsets are small
+
+  // Point residuals of every sample in use (in point sigmas), then the priors.
+  Eigen::VectorXd residual(const State& st) const {
+    const RobotModel mdl = withJointOffsets(model_, st.arm, st.head);
+    Eigen::VectorXd e(static_cast<int>(used_.size() * points_.size() * 3 + 6 + offsets_.size()));
+    int k = 0;
+    for (const Sample* s : used_) {
+      const Eigen::Isometry3d seen = st.x * headChain(mdl, s->head_q) * s->marker_in_left, kin = mdl.tcp(s->arm_q) * st.m;
+      for (const auto& p : points_) {
+        e.segment<3>(k) = (seen * p - kin * p) / kSigmaPoint;
+        k += 3;
+      }
+    }
+    const Eigen::Isometry3d dm = m_nominal_.inverse() * st.m;
+    e.segment<3>(k) = dm.translation() / kPriorTranslation;
+    e.segment<3>(k + 3) = logRotation(dm.rotation()) / kPriorRotation;
+    k += 6;
+    for (const auto& o : offsets_) e[k++] = (o.first ? st.arm[o.second] : st.head[o.second]) / kPriorOffset;
+    return e;
+  }
+
+  // Forward differences over the free columns.
+  Eigen::MatrixXd jacobian(const State& st, const Eigen::VectorXd& e0) const {
+    Eigen::MatrixXd j(e0.size(), static_cast<int>(columns_.size()));
+    const double step = 1e-7;
+    for (int c = 0; c < j.cols(); ++c) {
+      Eigen::VectorXd d = Eigen::VectorXd::Zero(j.cols());
+      d[c] = step;
+      j.col(c) = (residual(apply(st, d)) - e0) / step;
+    }
+    return j;
+  }
+
+  // `st` moved by `d`, one value per free column.
+  State apply(const State& st, const Eigen::VectorXd& d_free) const {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(12 + static_cast<int>(offsets_.size()));
+    for (size_t i = 0; i < columns_.size(); ++i) d[columns_[i]] = d_free[static_cast<int>(i)];
+    State out = st;
+    out.x = perturb(st.x, d.segment<6>(0));
+    out.m = perturb(st.m, d.segment<6>(6));
+    for (size_t i = 0; i < offsets_.size(); ++i) {
+      (offsets_[i].first ? out.arm[offsets_[i].second] : out.head[offsets_[i].second]) += d[12 + static_cast<int>(i)];
+    }
+    return out;
+  }
+
+  const RobotModel& model_;
+  const robot_description::FreeParams free_;
+  const Eigen::Isometry3d m_nominal_;
+  std::vector<std::pair<bool, size_t>> offsets_;  // (is arm, joint index) of the free joint offsets
+  std::vector<int> columns_;                      // free columns of the full parameter vector
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<const Sample*> used_;
+  std::vector<int> used_index_;
+};
+
+}  // namespace
+
+Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits) {
+  Result r = paper;
+  r.method = "joint";
+  if (!paper.success) return r;
+  JointLeastSquares solver(model, paper);
+  JointLeastSquares::State st = solver.fit(solver.start(paper));
+  for (const auto& d : solver.dropOutliers(st)) {
     r.used.erase(std::find(r.used.begin(), r.used.end(), d.first));
     r.rejected.push_back(d.first);
     r.rejection_reasons.push_back("outlier in the joint solution: RMS point residual " + mm(d.second));
   }
-  st.x.linear() = Eigen::Quaterniond(st.x.rotation()).normalized().toRotationMatrix();
+  // (A held fixed point stays exactly nominal.)
+  if (solver.fixedPointFree()) st.x.linear() = Eigen::Quaterniond(st.x.rotation()).normalized().toRotationMatrix();
   r.fixed_point = st.x;
   r.marker_offset = st.m;
   r.arm_joint_offsets = st.arm;
@@ -486,6 +545,7 @@ Result solveJointly(const RobotModel& model, const Result& paper, const FusionLi
   double max_offset = 0;
   for (double o : st.arm) max_offset = std::max(max_offset, std::abs(o));
   for (double o : st.head) max_offset = std::max(max_offset, std::abs(o));
+  const Eigen::Isometry3d& m_nominal = solver.nominalMarker();
   r.message += "; joint least squares of fixed point, marker offset (moved " +
                mm((m_nominal.inverse() * st.m).translation().norm()) + " / " + deg(angleBetween(m_nominal, st.m)) +
                ") and joint zero offsets (largest " + deg(max_offset) + ")";

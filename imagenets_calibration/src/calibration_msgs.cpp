@@ -1,6 +1,7 @@
 #include "imagenets_calibration/calibration_msgs.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "imagenets/vision/frames.h"
@@ -158,6 +159,12 @@ void summarize(const imagenets_calibration_msgs::CalibrationResult& m, imagenets
   out.unobservable = m.unobservable;
   out.condition_number = m.condition_number;
   out.poses_taken = static_cast<int>(m.samples.size());
+  for (int i = 0; i < 6; ++i) {
+    out.fixed_point_std_dev[i] = std::sqrt(m.fixed_point_covariance[7 * i]);
+    out.marker_offset_std_dev[i] = std::sqrt(m.marker_offset_covariance[7 * i]);
+  }
+  out.arm_joint_offset_std = m.arm_joint_offset_std;
+  out.head_joint_offset_std = m.head_joint_offset_std;
 }
 
 }  // namespace imagenets_calibration

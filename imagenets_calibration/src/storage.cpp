@@ -248,8 +248,22 @@ void emitEstimate(YAML::Emitter& out, const Result& r) {
   emitVector(out, r.std_rotation);
 }
 
+// x y z (m) and rx ry rz (rad, about the parent frame's axes).
+void emitStd(YAML::Emitter& out, const char* key, const Eigen::Matrix<double, 6, 1>& std) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "xyz" << YAML::Value;
+  emitVector(out, std.head<3>());
+  out << YAML::Key << "rotation" << YAML::Value;
+  emitVector(out, std.tail<3>());
+  out << YAML::EndMap;
+}
+
 // The pixel-level fit's uncertainty (calibration.h): row-major 6x6, (translation m, rotation rad).
 void emitUncertainty(YAML::Emitter& out, const Uncertainty& u) {
+  // One standard deviation per estimated parameter (0: held at its nominal value), for the reader:
+  // the square roots of the covariances' diagonals, and the joint offsets' below.
+  emitStd(out, "fixed_point_std_dev", u.fixedPointStd());
+  emitStd(out, "marker_offset_std_dev", u.markerOffsetStd());
   out << YAML::Key << "fixed_point_covariance" << YAML::Value;
   emitList(out, std::vector<double>(u.fixed_point_covariance.data(), u.fixed_point_covariance.data() + 36));
   out << YAML::Key << "marker_offset_covariance" << YAML::Value;

@@ -161,5 +161,22 @@ TEST_F(Fixture, UnknownMethodIsAnError) {
                std::invalid_argument);
 }
 
+TEST_F(Fixture, ATargetNeverSeenIsTheFailuresFirstWords) {
+  std::vector<Sample> samples(3, exactSample(arm(), head(), nominalMarker()));
+  for (auto& s : samples) {
+    s.left.found = s.right.found = false;
+    s.left.reason = s.right.reason = "no marker candidate";
+  }
+  for (const char* method : {"paper", "joint"}) {
+    const Result r = calibrate(model, samples, method, FusionLimits(), CombineOptions());
+    EXPECT_FALSE(r.success);
+    EXPECT_EQ(r.message.rfind("the target was never seen: in none of the 3 samples' images (sample 0: marker not found "
+                              "(left: no marker candidate",
+                              0),
+              0u)
+        << r.message;
+  }
+}
+
 }  // namespace
 }  // namespace imagenets_calibration

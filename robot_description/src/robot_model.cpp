@@ -1,12 +1,15 @@
 #include "robot_description/robot_model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include <boost/filesystem.hpp>
 #include <ros/package.h>
+#include <ros/ros.h>
 #include <yaml-cpp/yaml.h>
 
 #include "robot_description/urdf_kinematics.h"
@@ -60,8 +63,87 @@ std::vector<double> poseDeg(const YAML::Node& node, const std::string& key, cons
   return v;
 }
 
-// A description whose kinematics are a URDF's (urdf_kinematics.h): `urdf` (relative to the YAML
-// file) and the links to read; the rest as in a DH description.
+// The key free_params (freeParams), checked against the description's joints.
+void readFreeParams(const YAML::Node& root, RobotDescription& d) {
+  const YAML::Node p = root["free_params"];
+  if (!p) return;
+  if (!p.IsSequence() || p.size() == 0) {
+    throw error(d.source + ": free_params", "expected a non-empty list of parameter names");
+  }
+  d.free_params = p.as<std::vector<std::string>>();
+  freeParams(d);
+}
+
+std::string& urdfFileForAll() {
+  static std::string path;
+  return path;
+}
+
+// The URDF form names links (arm.tip_link, ...) where the DH form lists joints (arm.joints).
+bool urdfForm(const YAML::Node& root) { return root["urdf"] || !(root["arm"] && root["arm"]["joints"]); }
+
+// The URDF text of a description in the URDF form (root) and where it is from (loadRobotDescription).
+std::string urdfText(const YAML::Node& root, const std::string& path, std::string& source);
+
+// The URDF on the parameter server, as urdf::Model::initParam and robot_state_publisher read it.
+std::string urdfFromParameter(const std::string& where, std::string& source) {
+  const std::string why = "names no URDF file (key 'urdf')";
+  if (!ros::isInitialized()) {
+    throw error(where, why + " and this program is no ROS node to read the parameter robot_description: give the "
+                             "file (urdf: FILE, or the command's --urdf FILE)");
+  }
+  ros::NodeHandle nh;
+  std::string key, xml;
+  if (!nh.searchParam("robot_description", key) || !nh.getParam(key, xml)) {
+    throw error(where, why + " and the parameter robot_description is not set (searched from the namespace '" +
+                           nh.getNamespace() + "' up)");
+  }
+  source = "parameter " + key;
+  return xml;
+}
+
+std::string urdfText(const YAML::Node& root, const std::string& path, std::string& source) {
+  if (root["urdf"] && root["urdf"].as<std::string>() != "robot_description") {
+    source = (boost::filesystem::path(path).parent_path() / root["urdf"].as<std::string>()).lexically_normal().string();
+  } else if (!urdfFileForAll().empty()) {
+    source = urdfFileForAll();
+  } else {
+    return urdfFromParameter(path, source);
+  }
+  std::ifstream in(source);
+  if (!in) throw std::runtime_error("URDF '" + source + "': cannot read the file (named by " + path + ")");
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Throws naming the key when `node` (at `where`) has a key not among `known`: a misspelt key would
+// otherwise be ignored silently (free_parms: the calibration estimating everything).
+void onlyKnownKeys(const YAML::Node& node, const std::vector<std::string>& known, const std::string& where) {
+  if (!node.IsMap()) throw error(where, "expected a map");
+  for (const auto& kv : node) {
+    const std::string key = kv.first.as<std::string>();
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    std::string list;
+    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    throw error(where, "unknown key '" + key + "' (known: " + list + ")");
+  }
+}
+
+// The keys of the URDF form, checked before anything is read.
+void checkUrdfFormKeys(const YAML::Node& root, const std::string& w) {
+  onlyKnownKeys(root, {"urdf", "name", "base_frame", "free_params", "arm", "head"}, w);
+  const YAML::Node arm = need(root, "arm", w), head = need(root, "head", w);
+  onlyKnownKeys(arm, {"tip_link", "tool_link", "marker", "hand_camera_link", "ft_sensor_link", "calibration_pose_deg",
+                      "home_deg", "link_prefix"},
+                w + ": arm");
+  onlyKnownKeys(need(arm, "marker", w + ": arm"), {"link", "size"}, w + ": arm.marker");
+  onlyKnownKeys(head, {"tip_link", "stereo_camera", "calibration_pose_deg", "home_deg", "link_prefix"}, w + ": head");
+  onlyKnownKeys(need(head, "stereo_camera", w + ": head"),
+                {"left_link", "right_link", "width", "height", "left_camera_info", "right_camera_info"},
+                w + ": head.stereo_camera");
+}
+
+// A description whose kinematics are a URDF's (urdf_kinematics.h): the URDF (loadRobotDescription)
+// and the links to read; the rest as in a DH description.
 RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
   const std::string w = path;
   const auto dir = boost::filesystem::path(path).parent_path();
@@ -71,7 +153,10 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
   RobotDescription d;
   d.source = path;
   try {
-    const UrdfKinematics urdf = UrdfKinematics::fromFile(file(root, "urdf"));
+    checkUrdfFormKeys(root, w);
+    std::string source;
+    const std::string xml = urdfText(root, path, source);
+    const UrdfKinematics urdf(xml, source);
     const YAML::Node arm = need(root, "arm", w), head = need(root, "head", w);
     const YAML::Node stereo = need(head, "stereo_camera", w + ": head");
     const YAML::Node marker = need(arm, "marker", w + ": arm");
@@ -107,6 +192,7 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
     d.arm_home = poseDeg(arm, "home_deg", w + ": arm", d.arm);
     d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
     d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
+    readFreeParams(root, d);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());
   }
@@ -224,7 +310,7 @@ RobotDescription loadRobotDescription(const std::string& path) {
     throw std::runtime_error("robot description '" + path + "': " + e.what());
   }
   const std::string w = path;
-  if (root["urdf"]) return fromUrdf(root, path);
+  if (urdfForm(root)) return fromUrdf(root, path);
   RobotDescription d;
   d.source = path;
   try {
@@ -262,10 +348,70 @@ RobotDescription loadRobotDescription(const std::string& path) {
     d.right_camera_info = rel("right_camera_info");
     d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
     d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
+    readFreeParams(root, d);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());
   }
   return d;
+}
+
+namespace {
+
+// The names free_params may hold, and what each sets.
+std::vector<std::pair<std::string, std::function<void(FreeParams&)>>> freeParamNames(const RobotDescription& d) {
+  std::vector<std::pair<std::string, std::function<void(FreeParams&)>>> names;
+  names.emplace_back("fixed_point", [](FreeParams& f) { f.fixed_point = true; });
+  names.emplace_back("target_offset", [](FreeParams& f) { f.target_offset = true; });
+  std::vector<std::pair<bool, size_t>> joints;  // (arm, index) of the estimable offsets
+  for (size_t j = 1; j + 1 < d.arm.joints.size(); ++j) joints.push_back({true, j});
+  for (size_t j = 1; j < d.head.joints.size(); ++j) joints.push_back({false, j});
+  names.emplace_back("joint_offsets", [joints](FreeParams& f) {
+    for (const auto& [arm, j] : joints) (arm ? f.arm : f.head).push_back(j);
+  });
+  for (const auto& [arm, j] : joints) {
+    names.emplace_back((arm ? d.arm : d.head).joints[j].name, [arm = arm, j = j](FreeParams& f) { (arm ? f.arm : f.head).push_back(j); });
+  }
+  return names;
+}
+
+}  // namespace
+
+FreeParams freeParams(const RobotDescription& d) {
+  const auto names = freeParamNames(d);
+  FreeParams f;
+  if (d.free_params.empty()) {
+    for (const auto& n : names) n.second(f);
+  } else {
+    f.fixed_point = f.target_offset = false;
+  }
+  for (const std::string& p : d.free_params) {
+    auto it = std::find_if(names.begin(), names.end(), [&](const auto& n) { return n.first == p; });
+    if (it == names.end()) {
+      std::string known;
+      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n.first;
+      throw error(d.source + ": free_params", "unknown parameter '" + p + "' (known: " + known + ")");
+    }
+    it->second(f);
+  }
+  for (auto* v : {&f.arm, &f.head}) {
+    std::sort(v->begin(), v->end());
+    v->erase(std::unique(v->begin(), v->end()), v->end());
+  }
+  return f;
+}
+
+void useUrdfFile(const std::string& path) { urdfFileForAll() = path; }
+
+std::string ownUrdf(const RobotDescription& d, std::string& source) {
+  if (d.source.empty() || !boost::filesystem::exists(d.source)) return "";
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(d.source);
+  } catch (const YAML::Exception&) {
+    return "";  // not a description file of this library (loadRobotDescription would have refused it)
+  }
+  if (!root.IsMap() || !urdfForm(root)) return "";
+  return urdfText(root, d.source, source);
 }
 
 std::string exampleRobotDescriptionPath() {

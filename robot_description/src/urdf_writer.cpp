@@ -10,6 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "robot_description/urdf_generator.h"
+#include "robot_description/urdf_kinematics.h"
 
 namespace robot_description {
 namespace {
@@ -19,8 +20,9 @@ using tinyxml2::XMLElement;
 // A robot's own URDF as an XML document, with the look-ups the changes need.
 class UrdfDocument {
  public:
-  explicit UrdfDocument(const std::string& path) : path_(path) {
-    if (doc_.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
+  // `xml` read from `path` (a file or a parameter, for messages).
+  UrdfDocument(const std::string& xml, const std::string& path) : path_(path) {
+    if (doc_.Parse(xml.c_str()) != tinyxml2::XML_SUCCESS) {
       throw std::runtime_error("URDF '" + path + "': cannot read it as XML: " + doc_.ErrorStr());
     }
     robot_ = doc_.FirstChildElement("robot");
@@ -129,26 +131,29 @@ std::string urdfFileOf(const RobotDescription& d) {
 }
 
 UrdfJoint urdfChainMountJoint(const RobotDescription& d, const KinematicChain& chain) {
-  const std::string file = urdfFileOf(d);
-  if (file.empty()) return {chain.link_prefix + "0_mount", d.base_frame, chain.link_prefix + "0"};
+  std::string file;
+  const std::string xml = ownUrdf(d, file);
+  if (xml.empty()) return {chain.link_prefix + "0_mount", d.base_frame, chain.link_prefix + "0"};
   if (chain.joints.empty()) throw std::runtime_error(d.source + ": a chain without joints has no mount joint");
-  UrdfDocument urdf(file);
+  UrdfDocument urdf(xml, file);
   const std::string link0 = UrdfDocument::linkOf(urdf.joint(chain.joints.front().name), "parent");
   return urdf.describe(urdf.fixedJointTo(link0, "the link joint '" + chain.joints.front().name + "' hangs from"));
 }
 
 UrdfJoint urdfFixedJoint(const RobotDescription& d, const std::string& link) {
-  const std::string file = urdfFileOf(d);
-  if (file.empty()) return {link + "_joint", "", link};
-  UrdfDocument urdf(file);
+  std::string file;
+  const std::string xml = ownUrdf(d, file);
+  if (xml.empty()) return {link + "_joint", "", link};
+  UrdfDocument urdf(xml, file);
   return urdf.describe(urdf.fixedJointTo(link, "a fixed frame"));
 }
 
 std::string writeUrdf(const RobotDescription& nominal, const RobotDescription& changed, const std::string& robot_name,
                       const std::string& note) {
-  const std::string file = urdfFileOf(nominal);
-  if (file.empty()) return generateUrdf(changed, robot_name, note);
-  UrdfDocument urdf(file);
+  std::string file;
+  const std::string xml = ownUrdf(nominal, file);
+  if (xml.empty()) return generateUrdf(changed, robot_name, note);
+  UrdfDocument urdf(xml, file);
   for (const auto& [n, c] : {std::make_pair(&nominal.arm, &changed.arm), std::make_pair(&nominal.head, &changed.head)}) {
     if (n->joints.size() != c->joints.size()) {
       throw std::runtime_error(file + ": the changed description's chain has " + std::to_string(c->joints.size()) +

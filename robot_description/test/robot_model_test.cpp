@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <ros/package.h>
+
 #include "robot_description/robot_model.h"
+#include "robot_description/urdf_kinematics.h"
 
 using namespace robot_description;
 
@@ -116,5 +119,113 @@ TEST(RobotModel, CalibrationPoseShowsTheMarkerToBothCameras) {
     const double cosang = normal.dot(-c.normalized());
     EXPECT_GT(cosang, std::cos(50 * kDeg)) << "marker normal " << normal.transpose();
   }
+}
+
+TEST(RobotModel, FreeParamsNameWhatACalibrationEstimatesAndRefuseUnknownNames) {
+  std::ifstream example(exampleRobotDescriptionPath());
+  const std::string text((std::istreambuf_iterator<char>(example)), std::istreambuf_iterator<char>());
+  // Absent: everything that can be estimated (arm joints 2..n-1, the head joints after the pan).
+  const RobotDescription all = loadRobotDescription(exampleRobotDescriptionPath());
+  const FreeParams every = freeParams(all);
+  EXPECT_TRUE(every.fixed_point && every.target_offset);
+  EXPECT_EQ(every.arm, (std::vector<size_t>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(every.head, (std::vector<size_t>{1}));
+  // Named: only those.
+  const std::string two = writeTemp(text + "\nfree_params: [fixed_point, " + all.arm.joints[2].name + "]\n");
+  const FreeParams some = freeParams(loadRobotDescription(two));
+  EXPECT_TRUE(some.fixed_point);
+  EXPECT_FALSE(some.target_offset);
+  EXPECT_EQ(some.arm, (std::vector<size_t>{2}));
+  EXPECT_TRUE(some.head.empty());
+  std::remove(two.c_str());
+  // An unknown name, and the first arm joint (whose offset no such calibration can tell from a
+  // turn of the head mount): errors naming the file, the key and the name.
+  for (const std::string& bad : {std::string("elbow"), all.arm.joints[0].name}) {
+    const std::string path = writeTemp(text + "\nfree_params: [fixed_point, " + bad + "]\n");
+    try {
+      loadRobotDescription(path);
+      ADD_FAILURE() << "expected an error for " << bad;
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(path + ": free_params"), std::string::npos) << what;
+      EXPECT_NE(what.find("unknown parameter '" + bad + "'"), std::string::npos) << what;
+      EXPECT_NE(what.find("known: fixed_point, target_offset, joint_offsets, " + all.arm.joints[1].name), std::string::npos)
+          << what;
+    }
+    std::remove(path.c_str());
+  }
+}
+
+// The calibration config names no URDF: the file given instead (the offline calibration's --urdf)
+// gives the same robot as the robot.yaml that names it; without one, and outside a ROS node (no
+// parameter server to read robot_description from), the error says what to give.
+TEST(RobotModel, ACalibrationConfigWithoutAUrdfFileTakesTheOneGivenOrSaysWhatIsMissing) {
+  const std::string dir = ros::package::getPath("robot_description") + "/config/six_axis/";
+  try {
+    loadRobotDescription(dir + "calibration.yaml");
+    ADD_FAILURE() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(dir + "calibration.yaml"), std::string::npos) << what;
+    EXPECT_NE(what.find("names no URDF file"), std::string::npos) << what;
+    EXPECT_NE(what.find("--urdf FILE"), std::string::npos) << what;
+  }
+  useUrdfFile(dir + "robot.urdf");
+  const RobotDescription config = loadRobotDescription(dir + "calibration.yaml");
+  useUrdfFile("");
+  const RobotDescription robot = loadRobotDescription(dir + "robot.yaml");
+  ASSERT_EQ(config.arm.joints.size(), 6u);
+  ASSERT_EQ(config.arm.joints.size(), robot.arm.joints.size());
+  for (size_t j = 0; j < robot.arm.joints.size(); ++j) {
+    EXPECT_EQ(config.arm.joints[j].name, robot.arm.joints[j].name);
+    EXPECT_EQ(config.arm.joints[j].origin.matrix(), robot.arm.joints[j].origin.matrix());
+  }
+  EXPECT_EQ(config.head.mount.matrix(), robot.head.mount.matrix());
+  EXPECT_EQ(config.marker.pose.matrix(), robot.marker.pose.matrix());
+  EXPECT_EQ(config.left_camera_info, robot.left_camera_info);
+  EXPECT_EQ(config.free_params, (std::vector<std::string>{"fixed_point", "target_offset", "joint_offsets"}));
+}
+
+// Bad calibration configs: each error names the file, the key or link, and what is wrong.
+TEST(RobotModel, BadCalibrationConfigsAreClearErrors) {
+  const std::string dir = ros::package::getPath("robot_description") + "/config/six_axis/";
+  std::ifstream in(dir + "calibration.yaml");
+  const std::string config((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto errorOf = [](const std::string& text) {
+    const std::string path = writeTemp(text);
+    std::string what = "no error";
+    try {
+      loadRobotDescription(path);
+    } catch (const std::runtime_error& e) {
+      what = e.what();
+    }
+    std::remove(path.c_str());
+    return std::make_pair(path, what);
+  };
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string t = config;
+    const size_t at = t.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? t : t.replace(at, from.size(), to);
+  };
+  useUrdfFile(dir + "robot.urdf");
+  // An unknown key, at the top and inside a group.
+  auto [path, what] = errorOf(config + "\nfree_parms: [fixed_point]\n");
+  EXPECT_NE(what.find(path + ": unknown key 'free_parms' (known: urdf, name, base_frame, free_params, arm, head)"),
+            std::string::npos)
+      << what;
+  std::tie(path, what) = errorOf(replaced("  tip_link: flange", "  tip_lnk: flange"));
+  EXPECT_NE(what.find(path + ": arm: unknown key 'tip_lnk'"), std::string::npos) << what;
+  // A link the URDF lacks.
+  std::tie(path, what) = errorOf(replaced("tip_link: flange", "tip_link: no_such_flange"));
+  EXPECT_NE(what.find("no_such_flange"), std::string::npos) << what;
+  EXPECT_NE(what.find(dir + "robot.urdf"), std::string::npos) << what;
+  // A URDF that does not parse.
+  const std::string broken = writeTemp("<robot name='cut short'><link name='base_link'/><joint");
+  useUrdfFile(broken);
+  std::tie(path, what) = errorOf(config);
+  EXPECT_NE(what.find(broken), std::string::npos) << what;
+  std::remove(broken.c_str());
+  useUrdfFile("");
 }
 

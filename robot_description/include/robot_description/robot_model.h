@@ -128,7 +128,25 @@ struct RobotDescription {
   FixedFrame mono_camera;
   std::string mono_camera_info;
   std::vector<double> arm_calibration_pose, arm_home, head_calibration_pose, head_home;
+  // What a calibration estimates (key `free_params`, as Fetch's robot_calibration names them;
+  // freeParams below); empty: everything it can.
+  std::vector<std::string> free_params;
 };
+
+// The parameters a calibration from the arm's target seen by the head's camera estimates:
+// `fixed_point` (the head's mount: base -> head link 0), `target_offset` (TCP -> target) and the
+// zero offsets of the joints listed (indices into arm / head). Only the offsets of arm joints
+// 2..n-1 and of the head joints after the first can be estimated: the others are
+// indistinguishable from a turn of the head mount (arm joint 1, the pan) or of the target offset
+// (the arm's last joint). The rest is held at its nominal value.
+struct FreeParams {
+  bool fixed_point = true, target_offset = true;
+  std::vector<size_t> arm, head;
+};
+// From the description's free_params: names `fixed_point`, `target_offset`, `joint_offsets` (all
+// that can be estimated) and single joints by name; empty: all. Throws std::runtime_error naming
+// the description's file, the key and the unknown or inestimable name (with the known ones).
+FreeParams freeParams(const RobotDescription& description);
 
 // Loads the description; throws std::runtime_error naming the file and the key on bad input.
 RobotDescription loadRobotDescription(const std::string& path);

@@ -54,4 +54,15 @@ RobotDescription withUrdfKinematics(RobotDescription description, const UrdfKine
 // The link names in the URDF generateUrdf(description) writes.
 UrdfLinks generatedUrdfLinks(const RobotDescription& description);
 
+// Where loadRobotDescription (robot_model.h) finds the URDF of a description in the URDF form
+// (links named: arm.tip_link, ...): the file of its key `urdf` (relative to the YAML); without
+// that key (or with `urdf: robot_description`), the file given here, else the parameter
+// `robot_description` of this ROS node, found as ROS tools find it (searched up from the node's
+// namespace, after remapping: robot_description:=other_name). "" = the parameter again. For a
+// program without a ROS master: the offline calibration's --urdf.
+void useUrdfFile(const std::string& path);
+// The robot's own URDF that `description` (the URDF form) was read from, by those rules, as text;
+// `source` says where from (the file, "parameter /robot_description"). "" for a DH description.
+std::string ownUrdf(const RobotDescription& description, std::string& source);
+
 }  // namespace robot_description
