@@ -25,21 +25,6 @@ std::string netsDir() {
   return imagenets::packageFile("friend_calibration", "config/nets/");
 }
 
-void setProperty(imagenets::NetSpec& spec, const std::string& block, const std::string& name, const std::string& text) {
-  for (auto& b : spec.blocks) {
-    if (b.name != block) continue;
-    for (auto& p : b.properties) {
-      if (p.name == name) {
-        p.text = text;
-        return;
-      }
-    }
-    b.properties.push_back({name, text, {}});
-    return;
-  }
-  FAIL() << "no block " << block;
-}
-
 struct CalibrationNet : ::testing::Test {
   RobotModel model{robot_description::loadRobotDescription(imagenets::packageFile("friend_description", "config/robot.yaml"))};
   fs::path dir = fs::temp_directory_path() / ("calibration_net_" + std::to_string(::getpid()));
@@ -91,9 +76,9 @@ struct CalibrationNet : ::testing::Test {
 
   imagenets_calibration_msgs::CalibrationResult::ConstPtr replay(const std::string& file, const std::string& method) {
     imagenets::NetSpec spec = imagenets::parseNetFile(netsDir() + "calibration.yaml");
-    setProperty(spec, "samples", "net", imagenets::packageFile("imagenets_calibration", "config/nets/calibration_sample_replay.yaml"));
-    setProperty(spec, "plan", "replay", file);
-    setProperty(spec, "plan", "method", method);
+    spec.block("samples").setProperty("net", imagenets::packageFile("imagenets_calibration", "config/nets/calibration_sample_replay.yaml"));
+    spec.block("plan").setProperty("replay", file);
+    spec.block("plan").setProperty("method", method);
     imagenets::Executor exec(imagenets::Net::build(spec), imagenets::ExecutorOptions{2});
     const imagenets::RunReport report = exec.run();
     EXPECT_TRUE(report.ok()) << (report.failed.empty() ? "" : report.failed.front());
@@ -154,8 +139,8 @@ TEST_F(CalibrationNet, ABadReplayFileIsANamedError) {
   text.replace(open, close - open + 1, "[elbow]");
   std::ofstream(file) << text;
   imagenets::NetSpec spec = imagenets::parseNetFile(netsDir() + "calibration.yaml");
-  setProperty(spec, "samples", "net", imagenets::packageFile("imagenets_calibration", "config/nets/calibration_sample_replay.yaml"));
-  setProperty(spec, "plan", "replay", file);
+  spec.block("samples").setProperty("net", imagenets::packageFile("imagenets_calibration", "config/nets/calibration_sample_replay.yaml"));
+  spec.block("plan").setProperty("replay", file);
   imagenets::Executor exec(imagenets::Net::build(spec), imagenets::ExecutorOptions{2});
   const imagenets::RunReport report = exec.run();
   ASSERT_FALSE(report.ok());

@@ -50,6 +50,32 @@ TEST(Tool, RunSetAllGivesEveryBlockOfTheNetTreeTheRobotDescription) {
   expectContains(r.output, "expected 7 joint angles, got 6");
 }
 
+TEST(Tool, StudyCommandsListTheirFlagsWithDefaults) {
+  Result r = tool("accuracy-study --help", true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  for (const char* flag : {"--true-robots arg (=20)", "--first-seed arg (=1)", "--magnitude arg (=1)", "--reflections arg",
+                           "--method arg (=joint)", "--loops arg (=5)", "--pose-sweep arg (=3,7)",
+                           "--output-dir arg (=out/accuracy)", "--wait arg (=60)"}) {
+    expectContains(r.output, flag);
+  }
+  r = tool("repeatability --help", true);
+  for (const char* flag : {"--runs arg (=100)", "--redundancy arg (=1,3,5)", "--method arg (=both)",
+                           "--real-speed-runs arg (=2)", "--output-dir arg (=out/repeatability)"}) {
+    expectContains(r.output, flag);
+  }
+  r = tool("calibrate --help", true);
+  for (const char* flag : {"--redundancy arg (=5)", "--bag arg", "--config arg", "--set arg", "-o [ --output ] arg"}) {
+    expectContains(r.output, flag);
+  }
+  // roslaunch's own arguments are no flags of the command; anything else unknown is named.
+  r = tool("accuracy-study --loops 4 __name:=study __log:=/tmp/study.log");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--loops must be odd and >= 1, not 4");
+  r = tool("calibrate --bags x.bag");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "imagenets calibrate: unknown option '--bags'");
+}
+
 TEST(Tool, StudyCommandsCheckTheirArgumentsFirst) {
   Result r = tool("repeatability --redundancy 1,x");
   EXPECT_EQ(r.status, 2);

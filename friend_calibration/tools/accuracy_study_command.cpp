@@ -218,140 +218,163 @@ cv::Mat errorVersusPosesPicture(const std::vector<Run>& runs, const std::vector<
   return out;
 }
 
-int accuracyStudy(const Args& args) {
+void declare(Flags& f) {
+  f.add()("true-robots", po::value<int>()->default_value(20), "random true robots to calibrate")
+      ("first-seed", po::value<int>()->default_value(1), "the first robot's seed (>= 1)")
+      ("magnitude", po::value<double>()->default_value(1.0), "times true_error.yaml's `random` magnitudes")
+      ("reflections", po::value<double>(), "spurious-reflection outliers in percent (default: the simulator's)")
+      ("method", po::value<std::string>()->default_value("joint"), "joint or paper")
+      ("loops", po::value<int>()->default_value(5), "loops of the main calibration (odd)")
+      ("pose-sweep", po::value<std::string>()->default_value("3,7"), "other loop counts per robot (odd), or none")
+      ("output-dir", po::value<std::string>()->default_value("out/accuracy"), "where the CSVs, table and pictures go")
+      ("wait", po::value<double>()->default_value(60), "seconds to wait for the calibration node");
+  f.acceptRosArguments();
+}
+
+struct Study {
   int robots = 20, first_seed = 1, loops = 5;
-  double magnitude = 1.0, reflections_percent = -1, wait = 60;
-  std::string method = "joint", out = "out/accuracy";
-  std::vector<int> sweep{3, 7};
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--true-robots") {
-      robots = intValue(args, i);
-    } else if (args[i] == "--first-seed") {
-      first_seed = intValue(args, i);
-    } else if (args[i] == "--magnitude") {
-      magnitude = doubleValue(args, i);
-    } else if (args[i] == "--reflections") {
-      reflections_percent = doubleValue(args, i);
-    } else if (args[i] == "--method") {
-      method = flagValue(args, i);
-    } else if (args[i] == "--loops") {
-      loops = intValue(args, i);
-    } else if (args[i] == "--pose-sweep") {
-      const std::string v = flagValue(args, i);
-      sweep = v == "none" ? std::vector<int>{} : parseCounts("--pose-sweep", v);
-    } else if (args[i] == "--output-dir") {
-      out = flagValue(args, i);
-    } else if (args[i] == "--wait") {
-      wait = doubleValue(args, i);
-    } else if (args[i].rfind("__", 0) != 0) {  // roslaunch's __name:= etc.
-      throw unknownArgument(args[i]);
-    }
-  }
-  if (robots < 1) throw UsageError("--true-robots must be >= 1, not " + std::to_string(robots));
-  if (first_seed < 1) throw UsageError("--first-seed must be >= 1 (seed 0 is the file's explicit error), not " + std::to_string(first_seed));
-  if (!(magnitude > 0)) throw UsageError("--magnitude must be positive");
-  if (reflections_percent != -1 && !(reflections_percent >= 0 && reflections_percent <= 100)) {
+  double magnitude = 1.0, reflections_percent = -1;  // -1: the simulator's
+  std::string method, out;
+  std::vector<int> sweep;      // other loop counts
+  std::vector<int> all_loops;  // sweep and loops, sorted
+  double reflections = 0;      // the rate the study runs with
+  int poses_per_loop = 2;
+};
+
+Study study(const Options& o) {
+  Study s;
+  s.robots = o["true-robots"].as<int>();
+  s.first_seed = o["first-seed"].as<int>();
+  s.magnitude = o["magnitude"].as<double>();
+  if (o.count("reflections")) s.reflections_percent = o["reflections"].as<double>();
+  s.method = o["method"].as<std::string>();
+  s.loops = o["loops"].as<int>();
+  const std::string sweep = o["pose-sweep"].as<std::string>();
+  s.sweep = sweep == "none" ? std::vector<int>{} : parseCounts("--pose-sweep", sweep);
+  s.out = o["output-dir"].as<std::string>();
+  if (s.robots < 1) throw UsageError("--true-robots must be >= 1, not " + std::to_string(s.robots));
+  if (s.first_seed < 1) throw UsageError("--first-seed must be >= 1 (seed 0 is the file's explicit error), not " + std::to_string(s.first_seed));
+  if (!(s.magnitude > 0)) throw UsageError("--magnitude must be positive");
+  if (o.count("reflections") && !(s.reflections_percent >= 0 && s.reflections_percent <= 100)) {
     throw UsageError("--reflections is a percentage 0..100");
   }
-  if (method != "joint" && method != "paper") throw UsageError("--method must be joint or paper, not '" + method + "'");
+  if (s.method != "joint" && s.method != "paper") throw UsageError("--method must be joint or paper, not '" + s.method + "'");
   // The calibration plan takes odd loop counts only (the paper's per-axis median needs a middle value).
-  if (loops < 1 || loops % 2 == 0) throw UsageError("--loops must be odd and >= 1, not " + std::to_string(loops));
-  for (int n : sweep) {
+  if (s.loops < 1 || s.loops % 2 == 0) throw UsageError("--loops must be odd and >= 1, not " + std::to_string(s.loops));
+  for (int n : s.sweep) {
     if (n % 2 == 0) throw UsageError("--pose-sweep: loop counts must be odd, not " + std::to_string(n));
   }
-  std::vector<int> all_loops = sweep;
-  if (std::find(all_loops.begin(), all_loops.end(), loops) == all_loops.end()) all_loops.push_back(loops);
-  std::sort(all_loops.begin(), all_loops.end());
+  s.all_loops = s.sweep;
+  if (std::find(s.all_loops.begin(), s.all_loops.end(), s.loops) == s.all_loops.end()) s.all_loops.push_back(s.loops);
+  std::sort(s.all_loops.begin(), s.all_loops.end());
+  return s;
+}
 
-  std::filesystem::create_directories(out);
-  CalibrationClient client("imagenets_accuracy_study", wait);
-  // Leave the simulator as found: its true robot and its reflection rate.
-  int sim_seed = -1;
-  double sim_magnitude = 1.0, sim_reflections = 0;
-  ros::param::get("/friend_sim/seed", sim_seed);
-  ros::param::get("/friend_sim/magnitude", sim_magnitude);
-  ros::param::get("/friend_sim/faults/reflection_probability", sim_reflections);
-  const double reflections = reflections_percent >= 0 ? reflections_percent / 100 : sim_reflections;
-  if (reflections_percent >= 0) CalibrationClient::setSimParam("faults/reflection_probability", reflections);
-  int poses_per_loop = 2;
-  ros::param::get("/friend_calibration/poses_per_loop", poses_per_loop);
-  if (method == "paper") poses_per_loop = 1;
+// The simulator's true robot and reflection rate, to leave it as found.
+struct SimulatorState {
+  int seed = -1;
+  double magnitude = 1.0, reflections = 0;
+};
+
+SimulatorState simulatorState() {
+  SimulatorState sim;
+  ros::param::get("/friend_sim/seed", sim.seed);
+  ros::param::get("/friend_sim/magnitude", sim.magnitude);
+  ros::param::get("/friend_sim/faults/reflection_probability", sim.reflections);
+  return sim;
+}
+
+Run calibrateOne(CalibrationClient& client, int seed, int loops, const std::string& method) {
   const robot_description::RobotModel& nominal = client.nominal();  // the robot the simulator runs
+  Run run;
+  run.seed = seed;
+  run.loops = loops;
+  run.r = client.calibrate(loops, method);
+  if (!run.usable()) {  // no fixed point: nothing to compare
+    run.r.error_mm = run.r.error_deg = run.r.effective_error_mm = run.r.effective_error_deg =
+        run.r.identifiable_error_mm = run.r.identifiable_error_deg = std::numeric_limits<double>::quiet_NaN();
+  }
+  if (run.r.have_truth) {
+    run.mount_offset_mm = (run.r.truth.translation() - nominal.headBase().translation()).norm() * 1000;
+    run.mount_offset_deg = imagenets_calibration::angleBetween(run.r.truth, nominal.headBase()) * 180 / M_PI;
+  }
+  if (!run.r.have_truth && run.r.response.success) {
+    throw std::runtime_error("no ground truth from the simulator (/friend_sim/ground_truth/head_base): the study "
+                             "needs friend_sim");
+  }
+  std::fprintf(stderr, "  %d loop(s): %s, %.3f mm, %.4f deg (3-sigma %.3f mm, %.4f deg; identifiable %.3f mm, %.4f deg)\n",
+               loops, run.status().c_str(), run.r.effective_error_mm, run.r.effective_error_deg, run.r.bound3_mm,
+               run.r.bound3_deg, run.r.identifiable_error_mm, run.r.identifiable_error_deg);
+  if (!run.usable()) std::fprintf(stderr, "    %s\n", run.r.response.message.c_str());
+  return run;
+}
 
+std::string reportHeader(const Study& s) {
   char buf[1024];
   std::snprintf(buf, sizeof buf,
                 "Accuracy over %d random true robots (seeds %d..%d, %.1f x the `random` magnitudes of true_error.yaml), "
                 "%.0f %% spurious-reflection outliers, method %s, %d loop(s) = %d poses planned; error against the "
                 "effective fixed point; 3-sigma bound = 3 sqrt(trace) of the reported covariance.\n\n",
-                robots, first_seed, first_seed + robots - 1, magnitude, reflections * 100, method.c_str(), loops,
-                loops * poses_per_loop);
-  std::ostringstream report;
-  report << buf;
-  report << "| seed | mount off nominal mm / deg | error mm | error deg | 3-sigma mm | 3-sigma deg | within 3 sigma | "
-            "identifiable error mm / deg | poses used / rejected | time s | status |\n"
-            "|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::cout << report.str() << std::flush;
+                s.robots, s.first_seed, s.first_seed + s.robots - 1, s.magnitude, s.reflections * 100, s.method.c_str(),
+                s.loops, s.loops * s.poses_per_loop);
+  return std::string(buf) +
+         "| seed | mount off nominal mm / deg | error mm | error deg | 3-sigma mm | 3-sigma deg | within 3 sigma | "
+         "identifiable error mm / deg | poses used / rejected | time s | status |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|\n";
+}
 
-  std::vector<Run> main_runs, all_runs;
+// The main run's row of the per-robot table.
+std::string robotRow(const Run& run) {
+  const auto& res = run.r.response;
+  char buf[1024];
+  if (run.usable()) {
+    std::snprintf(buf, sizeof buf,
+                  "| %d | %.1f / %.2f | %.3f | %.4f | %.3f | %.4f | %s | %.3f / %.4f | %d / %d | %.1f | %s |\n", run.seed,
+                  run.mount_offset_mm, run.mount_offset_deg, run.r.effective_error_mm, run.r.effective_error_deg,
+                  run.r.bound3_mm, run.r.bound3_deg, run.r.bound3_mm > 0 ? (run.within() ? "yes" : "NO") : "NO (no bound reported)",
+                  run.r.identifiable_error_mm, run.r.identifiable_error_deg, res.samples_used, res.samples_rejected,
+                  res.total_time, run.status().c_str());
+  } else {
+    std::snprintf(buf, sizeof buf, "| %d | %.1f / %.2f | - | - | - | - | - | - | %d / %d | %.1f | FAILED: %.200s |\n",
+                  run.seed, run.mount_offset_mm, run.mount_offset_deg, res.samples_used, res.samples_rejected,
+                  res.total_time, res.message.c_str());
+  }
+  return buf;
+}
+
+struct Runs {
+  std::vector<Run> main, all;  // main: the --loops run of each robot
   std::string robots_csv = kCsvHeader, runs_csv = kCsvHeader;
-  for (int k = 0; k < robots; ++k) {
-    const int seed = first_seed + k;
-    const std::string sim_message = client.setTrueRobot(seed, magnitude);
-    std::fprintf(stderr, "[%d/%d] %s\n", k + 1, robots, sim_message.c_str());
-    // The main run first (the one the table is about), then the fewer-loop runs.
-    std::vector<int> order{loops};
-    for (int n : all_loops) {
-      if (n != loops) order.push_back(n);
-    }
+};
+
+// Every robot calibrated, the main run first (the one the table is about), then the fewer-loop
+// runs; the per-robot rows go to `report` and stdout as they come.
+Runs calibrateRobots(CalibrationClient& client, const Study& s, std::ostringstream& report) {
+  Runs runs;
+  std::vector<int> order{s.loops};
+  for (int n : s.all_loops) {
+    if (n != s.loops) order.push_back(n);
+  }
+  for (int k = 0; k < s.robots; ++k) {
+    const int seed = s.first_seed + k;
+    const std::string sim_message = client.setTrueRobot(seed, s.magnitude);
+    std::fprintf(stderr, "[%d/%d] %s\n", k + 1, s.robots, sim_message.c_str());
     for (int n : order) {
-      Run run;
-      run.seed = seed;
-      run.loops = n;
-      run.r = client.calibrate(n, method);
-      if (!run.usable()) {  // no fixed point: nothing to compare
-        run.r.error_mm = run.r.error_deg = run.r.effective_error_mm = run.r.effective_error_deg =
-            run.r.identifiable_error_mm = run.r.identifiable_error_deg = std::numeric_limits<double>::quiet_NaN();
-      }
-      if (run.r.have_truth) {
-        run.mount_offset_mm = (run.r.truth.translation() - nominal.headBase().translation()).norm() * 1000;
-        run.mount_offset_deg = imagenets_calibration::angleBetween(run.r.truth, nominal.headBase()) * 180 / M_PI;
-      }
-      if (!run.r.have_truth && run.r.response.success) {
-        throw std::runtime_error("no ground truth from the simulator (/friend_sim/ground_truth/head_base): the study "
-                                 "needs friend_sim");
-      }
-      std::fprintf(stderr, "  %d loop(s): %s, %.3f mm, %.4f deg (3-sigma %.3f mm, %.4f deg; identifiable %.3f mm, %.4f deg)\n",
-                   n, run.status().c_str(), run.r.effective_error_mm, run.r.effective_error_deg, run.r.bound3_mm,
-                   run.r.bound3_deg, run.r.identifiable_error_mm, run.r.identifiable_error_deg);
-      if (!run.usable()) std::fprintf(stderr, "    %s\n", run.r.response.message.c_str());
-      runs_csv += csvRow(run, magnitude, reflections, method);
-      all_runs.push_back(run);
-      if (n != loops) continue;
-      robots_csv += csvRow(run, magnitude, reflections, method);
-      main_runs.push_back(run);
-      const auto& res = run.r.response;
-      if (run.usable()) {
-        std::snprintf(buf, sizeof buf,
-                      "| %d | %.1f / %.2f | %.3f | %.4f | %.3f | %.4f | %s | %.3f / %.4f | %d / %d | %.1f | %s |\n", seed,
-                      run.mount_offset_mm, run.mount_offset_deg, run.r.effective_error_mm, run.r.effective_error_deg,
-                      run.r.bound3_mm, run.r.bound3_deg,
-                      run.r.bound3_mm > 0 ? (run.within() ? "yes" : "NO") : "NO (no bound reported)",
-                      run.r.identifiable_error_mm, run.r.identifiable_error_deg, res.samples_used,
-                      res.samples_rejected, res.total_time, run.status().c_str());
-      } else {
-        std::snprintf(buf, sizeof buf, "| %d | %.1f / %.2f | - | - | - | - | - | - | %d / %d | %.1f | FAILED: %.200s |\n",
-                      seed, run.mount_offset_mm, run.mount_offset_deg, res.samples_used, res.samples_rejected,
-                      res.total_time, res.message.c_str());
-      }
-      report << buf;
-      std::cout << buf << std::flush;
+      const Run run = calibrateOne(client, seed, n, s.method);
+      runs.runs_csv += csvRow(run, s.magnitude, s.reflections, s.method);
+      runs.all.push_back(run);
+      if (n != s.loops) continue;
+      runs.robots_csv += csvRow(run, s.magnitude, s.reflections, s.method);
+      runs.main.push_back(run);
+      report << robotRow(run);
+      std::cout << robotRow(run) << std::flush;
     }
   }
-  // Back to the simulator's own true robot and reflection rate.
-  client.setTrueRobot(sim_seed, sim_magnitude);
-  if (reflections_percent >= 0) CalibrationClient::setSimParam("faults/reflection_probability", sim_reflections);
+  return runs;
+}
 
-  // The percentile table of the main runs.
+// The percentiles of the main runs' errors, the 3-sigma coverage and the compute time per pose.
+std::string percentileTable(const std::vector<Run>& main_runs, int robots) {
   std::vector<double> mm, deg, id_mm, id_deg, compute_ms, cpu_ms;  // compute: per pose
   int within = 0, within_mm = 0, within_deg = 0, within_id = 0, failed = 0, refused = 0;
   for (const auto& r : main_runs) {
@@ -377,6 +400,7 @@ int accuracyStudy(const Args& args) {
   const int n = static_cast<int>(mm.size());
   auto pct = [&](int k) { return n > 0 ? 100.0 * k / n : 0.0; };
   std::ostringstream table;
+  char buf[1024];
   table << "\n| over " << n << " robots with a result | error mm | error deg | identifiable error mm | "
            "identifiable error deg |\n|---|---|---|---|---|\n";
   for (const auto& [name, p] : std::vector<std::pair<std::string, double>>{
@@ -401,47 +425,77 @@ int accuracyStudy(const Args& args) {
                 percentile(compute_ms, 0.5), percentile(compute_ms, 1.0), percentile(cpu_ms, 0.5),
                 percentile(cpu_ms, 1.0));
   table << buf;
+  return table.str();
+}
 
-  if (!sweep.empty()) {
-    table << "\nError over the number of poses (the same robots, each also calibrated with other loop counts):\n\n"
-             "| loops | poses planned | with result | median mm | 95th mm | max mm | median deg | 95th deg | max deg | "
-             "median 3-sigma mm | 3-sigma coverage | identifiable 95th mm / deg |\n"
-             "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    for (int l : all_loops) {
-      std::vector<double> e_mm, e_deg, b_mm, a_mm, a_deg;
-      int in = 0;
-      for (const auto& r : all_runs) {
-        if (r.loops != l || !r.usable()) continue;
-        a_mm.push_back(r.r.identifiable_error_mm);
-        a_deg.push_back(r.r.identifiable_error_deg);
-        e_mm.push_back(r.r.effective_error_mm);
-        e_deg.push_back(r.r.effective_error_deg);
-        b_mm.push_back(r.r.bound3_mm);
-        in += r.within() ? 1 : 0;
-      }
-      std::snprintf(buf, sizeof buf,
-                    "| %d | %d | %zu | %.3f | %.3f | %.3f | %.4f | %.4f | %.4f | %.3f | %.0f %% | %.3f / %.4f |\n", l,
-                    l * poses_per_loop, e_mm.size(), percentile(e_mm, 0.5), percentile(e_mm, 0.95),
-                    percentile(e_mm, 1.0), percentile(e_deg, 0.5), percentile(e_deg, 0.95), percentile(e_deg, 1.0),
-                    percentile(b_mm, 0.5), e_mm.empty() ? 0.0 : 100.0 * in / e_mm.size(), percentile(a_mm, 0.95),
-                    percentile(a_deg, 0.95));
-      table << buf;
+// The error over the number of poses: the same robots calibrated with each loop count.
+std::string poseSweepTable(const std::vector<Run>& all_runs, const Study& s) {
+  std::ostringstream table;
+  table << "\nError over the number of poses (the same robots, each also calibrated with other loop counts):\n\n"
+           "| loops | poses planned | with result | median mm | 95th mm | max mm | median deg | 95th deg | max deg | "
+           "median 3-sigma mm | 3-sigma coverage | identifiable 95th mm / deg |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (int l : s.all_loops) {
+    std::vector<double> e_mm, e_deg, b_mm, a_mm, a_deg;
+    int in = 0;
+    for (const auto& r : all_runs) {
+      if (r.loops != l || !r.usable()) continue;
+      a_mm.push_back(r.r.identifiable_error_mm);
+      a_deg.push_back(r.r.identifiable_error_deg);
+      e_mm.push_back(r.r.effective_error_mm);
+      e_deg.push_back(r.r.effective_error_deg);
+      b_mm.push_back(r.r.bound3_mm);
+      in += r.within() ? 1 : 0;
     }
+    char buf[1024];
+    std::snprintf(buf, sizeof buf,
+                  "| %d | %d | %zu | %.3f | %.3f | %.3f | %.4f | %.4f | %.4f | %.3f | %.0f %% | %.3f / %.4f |\n", l,
+                  l * s.poses_per_loop, e_mm.size(), percentile(e_mm, 0.5), percentile(e_mm, 0.95),
+                  percentile(e_mm, 1.0), percentile(e_deg, 0.5), percentile(e_deg, 0.95), percentile(e_deg, 1.0),
+                  percentile(b_mm, 0.5), e_mm.empty() ? 0.0 : 100.0 * in / e_mm.size(), percentile(a_mm, 0.95),
+                  percentile(a_deg, 0.95));
+    table << buf;
   }
-  report << table.str();
-  std::cout << table.str();
+  return table.str();
+}
 
-  writeFileAtomically(out + "/robots.csv", robots_csv);
-  writeFileAtomically(out + "/runs.csv", runs_csv);
-  writeFileAtomically(out + "/table.md", report.str());
-  std::snprintf(buf, sizeof buf, "magnitude %.1f, %.0f %% reflections, %s method, %d loops (%d poses), %d robots", magnitude,
-                reflections * 100, method.c_str(), loops, loops * poses_per_loop, robots);
-  writePngAtomically(out + "/error_per_robot.png", errorPerRobotPicture(main_runs, buf));
-  std::snprintf(buf, sizeof buf, "magnitude %.1f, %.0f %% reflections, %s, %d robots", magnitude, reflections * 100,
-                method.c_str(), robots);
-  writePngAtomically(out + "/error_vs_poses.png", errorVersusPosesPicture(all_runs, all_loops, poses_per_loop, buf));
-  std::cout << "written: " << out << "/robots.csv (one row per robot), " << out << "/runs.csv (every run), " << out
-            << "/table.md, " << out << "/error_per_robot.png, " << out << "/error_vs_poses.png\n";
+void writeResults(const Study& s, const Runs& runs, const std::string& report) {
+  writeFileAtomically(s.out + "/robots.csv", runs.robots_csv);
+  writeFileAtomically(s.out + "/runs.csv", runs.runs_csv);
+  writeFileAtomically(s.out + "/table.md", report);
+  char buf[1024];
+  std::snprintf(buf, sizeof buf, "magnitude %.1f, %.0f %% reflections, %s method, %d loops (%d poses), %d robots",
+                s.magnitude, s.reflections * 100, s.method.c_str(), s.loops, s.loops * s.poses_per_loop, s.robots);
+  writePngAtomically(s.out + "/error_per_robot.png", errorPerRobotPicture(runs.main, buf));
+  std::snprintf(buf, sizeof buf, "magnitude %.1f, %.0f %% reflections, %s, %d robots", s.magnitude, s.reflections * 100,
+                s.method.c_str(), s.robots);
+  writePngAtomically(s.out + "/error_vs_poses.png", errorVersusPosesPicture(runs.all, s.all_loops, s.poses_per_loop, buf));
+  std::cout << "written: " << s.out << "/robots.csv (one row per robot), " << s.out << "/runs.csv (every run), " << s.out
+            << "/table.md, " << s.out << "/error_per_robot.png, " << s.out << "/error_vs_poses.png\n";
+}
+
+int accuracyStudy(const Options& o) {
+  Study s = study(o);
+  std::filesystem::create_directories(s.out);
+  CalibrationClient client("imagenets_accuracy_study", o["wait"].as<double>());
+  const SimulatorState sim = simulatorState();
+  s.reflections = s.reflections_percent >= 0 ? s.reflections_percent / 100 : sim.reflections;
+  if (s.reflections_percent >= 0) CalibrationClient::setSimParam("faults/reflection_probability", s.reflections);
+  ros::param::get("/friend_calibration/poses_per_loop", s.poses_per_loop);
+  if (s.method == "paper") s.poses_per_loop = 1;
+
+  std::ostringstream report;
+  report << reportHeader(s);
+  std::cout << report.str() << std::flush;
+  const Runs runs = calibrateRobots(client, s, report);
+  // Back to the simulator's own true robot and reflection rate.
+  client.setTrueRobot(sim.seed, sim.magnitude);
+  if (s.reflections_percent >= 0) CalibrationClient::setSimParam("faults/reflection_probability", sim.reflections);
+
+  const std::string tables = percentileTable(runs.main, s.robots) + (s.sweep.empty() ? "" : poseSweepTable(runs.all, s));
+  report << tables;
+  std::cout << tables;
+  writeResults(s, runs, report.str());
   return 0;
 }
 
@@ -452,7 +506,7 @@ IMAGENETS_TOOL_COMMAND(accuracy_study, "accuracy-study",
                        "[--method joint|paper] [--loops 5] [--pose-sweep 3,7|none] [--output-dir DIR] [--wait S]",
                        "calibrate many random true robots of the running simulator; error percentiles, 3-sigma "
                        "coverage, CSV and pictures",
-                       accuracyStudy);
+                       declare, accuracyStudy);
 
 }  // namespace tool
 }  // namespace imagenets

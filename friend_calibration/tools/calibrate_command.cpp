@@ -61,67 +61,8 @@ int calibrateFromBag(const imagenets_calibration::BagCalibrationOptions& options
   return 0;
 }
 
-int calibrate(const Args& args) {
-  int redundancy = 5, poses = 0, max_poses = 0;
-  std::string method;
-  double timeout = 30, target_mm = 0, target_deg = 0;
-  imagenets_calibration::BagCalibrationOptions bag;
-  std::string output;
-  bool urdf = false;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--bag") {
-      bag.bag = flagValue(args, i);
-    } else if (args[i] == "--config") {
-      bag.description = flagValue(args, i);
-    } else if (args[i] == "--urdf") {
-      robot_description::useUrdfFile(flagValue(args, i));
-      urdf = true;
-    } else if (args[i] == "--net") {
-      bag.net = flagValue(args, i);
-    } else if (args[i] == "--output" || args[i] == "-o") {
-      output = flagValue(args, i);
-    } else if (args[i] == "--set") {
-      const std::string s = flagValue(args, i);
-      const size_t eq = s.find('=');
-      if (eq == std::string::npos || eq == 0) throw UsageError("--set '" + s + "' is not property=value");
-      bag.settings.emplace_back(s.substr(0, eq), s.substr(eq + 1));
-    } else if (args[i] == "--redundancy") {
-      redundancy = intValue(args, i);
-    } else if (args[i] == "--poses") {
-      poses = intValue(args, i);
-    } else if (args[i] == "--target-mm") {
-      target_mm = doubleValue(args, i);
-    } else if (args[i] == "--target-deg") {
-      target_deg = doubleValue(args, i);
-    } else if (args[i] == "--max-poses") {
-      max_poses = intValue(args, i);
-    } else if (args[i] == "--method") {
-      method = flagValue(args, i);
-    } else if (args[i] == "--wait") {
-      timeout = doubleValue(args, i);
-    } else if (args[i].rfind("__", 0) != 0) {  // roslaunch's __name:= etc.
-      throw unknownArgument(args[i]);
-    }
-  }
-  if (!bag.bag.empty()) {
-    if (bag.description.empty()) throw UsageError("--bag needs --config FILE (the robot's description YAML)");
-    if (!method.empty()) bag.method = method;
-    return calibrateFromBag(bag, output);
-  }
-  if (!bag.description.empty() || !bag.net.empty() || !output.empty() || !bag.settings.empty() || urdf) {
-    throw UsageError("--config, --urdf, --net, --output and --set go with --bag");
-  }
-  if (poses < 0) throw UsageError("--poses must be >= 0");
-  CalibrationClient client("imagenets_calibrate", timeout);
-  imagenets_calibration_msgs::Calibrate::Request request;
-  request.redundancy = redundancy;
-  request.method = method;
-  request.poses = poses;
-  // The node names a bad value (negative target, ...) in its answer.
-  request.target_uncertainty = target_mm / 1000;
-  request.target_uncertainty_rotation = target_deg * M_PI / 180;
-  request.max_poses = max_poses;
-  const CalibrationRun run = client.calibrate(request);
+// What the node answered, and against the simulator the errors against its truth.
+int printRun(const CalibrationRun& run, double target_mm, double target_deg) {
   const auto& r = run.response;
   std::printf("%s: %s\n", r.success ? "calibrated" : "FAILED", r.message.c_str());
   if (!r.success) return 1;
@@ -163,6 +104,62 @@ int calibrate(const Args& args) {
   return 0;
 }
 
+
+void declare(Flags& f) {
+  f.add()("redundancy", po::value<int>()->default_value(5), "loops of the calibration")
+      ("poses", po::value<int>()->default_value(0), "poses to take (0: the plan's)")
+      ("method", po::value<std::string>()->default_value(""), "paper or joint (default: the node's)")
+      ("target-mm", po::value<double>()->default_value(0), "take poses until the 3-sigma bound is this small (mm)")
+      ("target-deg", po::value<double>()->default_value(0), "... and this small (deg)")
+      ("max-poses", po::value<int>()->default_value(0), "at most this many poses for a target (0: the node's)")
+      ("wait", po::value<double>()->default_value(30), "seconds to wait for the calibration node")
+      ("bag", po::value<std::string>()->default_value(""), "calibrate offline from this rosbag instead")
+      ("config", po::value<std::string>()->default_value(""), "with --bag: the robot's description YAML")
+      ("urdf", po::value<std::string>()->default_value(""), "with --bag: the robot's URDF when the config names none")
+      ("net", po::value<std::string>()->default_value(""), "with --bag: the calibration net")
+      ("set", po::value<std::vector<std::string>>(), "with --bag: PROPERTY=VALUE for every block that has it")
+      ("output,o", po::value<std::string>()->default_value(""), "with --bag: write the calibration here");
+  f.acceptRosArguments();
+}
+
+// --bag and what goes with it.
+int calibrateBag(const Options& o) {
+  imagenets_calibration::BagCalibrationOptions bag;
+  bag.bag = o["bag"].as<std::string>();
+  bag.description = o["config"].as<std::string>();
+  bag.net = o["net"].as<std::string>();
+  for (const auto& s : strings(o, "set")) {
+    const size_t eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) throw UsageError("--set '" + s + "' is not property=value");
+    bag.settings.emplace_back(s.substr(0, eq), s.substr(eq + 1));
+  }
+  if (bag.description.empty()) throw UsageError("--bag needs --config FILE (the robot's description YAML)");
+  if (!o["urdf"].as<std::string>().empty()) robot_description::useUrdfFile(o["urdf"].as<std::string>());
+  if (!o["method"].as<std::string>().empty()) bag.method = o["method"].as<std::string>();
+  return calibrateFromBag(bag, o["output"].as<std::string>());
+}
+
+int calibrate(const Options& o) {
+  if (!o["bag"].as<std::string>().empty()) return calibrateBag(o);
+  if (!o["config"].as<std::string>().empty() || !o["net"].as<std::string>().empty() ||
+      !o["output"].as<std::string>().empty() || o.count("set") || !o["urdf"].as<std::string>().empty()) {
+    throw UsageError("--config, --urdf, --net, --output and --set go with --bag");
+  }
+  const int poses = o["poses"].as<int>();
+  if (poses < 0) throw UsageError("--poses must be >= 0");
+  const double target_mm = o["target-mm"].as<double>(), target_deg = o["target-deg"].as<double>();
+  CalibrationClient client("imagenets_calibrate", o["wait"].as<double>());
+  imagenets_calibration_msgs::Calibrate::Request request;
+  request.redundancy = o["redundancy"].as<int>();
+  request.method = o["method"].as<std::string>();
+  request.poses = poses;
+  // The node names a bad value (negative target, ...) in its answer.
+  request.target_uncertainty = target_mm / 1000;
+  request.target_uncertainty_rotation = target_deg * M_PI / 180;
+  request.max_poses = o["max-poses"].as<int>();
+  return printRun(client.calibrate(request), target_mm, target_deg);
+}
+
 }  // namespace
 
 IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--poses N] [--method paper|joint] [--target-mm MM] [--target-deg DEG] "
@@ -172,7 +169,7 @@ IMAGENETS_TOOL_COMMAND(calibrate, "calibrate", "calibrate [--redundancy N] [--po
                        "--target-mm/--target-deg: more poses until the 3-sigma bound is within; --bag: calibrate offline "
                        "from a rosbag (no robot, no master), the samples where arm and head stood still; --urdf: the robot's URDF "
                        "when the config names none",
-                       calibrate);
+                       declare, calibrate);
 
 }  // namespace tool
 }  // namespace imagenets

@@ -212,12 +212,10 @@ void JointGroupServer::onTrajectoryGoal(TrajectoryServer::GoalHandle gh) {
   gh.setAccepted("following the trajectory");
 }
 
-std::string JointGroupServer::acceptTrajectoryLocked(const control_msgs::FollowJointTrajectoryGoal& goal,
-                                                     const std::vector<int>& index, int* code) {
+std::string JointGroupServer::waypointsLocked(const control_msgs::FollowJointTrajectoryGoal& goal,
+                                              const std::vector<int>& index, std::vector<Waypoint>* waypoints) const {
   const auto names = chain_.names();
   const size_t n = names.size(), m = index.size();
-  *code = FollowJointTrajectoryResult::INVALID_GOAL;
-  std::vector<Waypoint> waypoints;
   for (size_t k = 0; k < goal.trajectory.points.size(); ++k) {
     const auto& p = goal.trajectory.points[k];
     const std::string point = "point " + std::to_string(k);
@@ -242,9 +240,9 @@ std::string JointGroupServer::acceptTrajectoryLocked(const control_msgs::FollowJ
     }
     const std::string limits = chain_.limitViolation(w.positions);
     if (!limits.empty()) return point + ": " + limits;
-    if (!waypoints.empty() && !(w.time > waypoints.back().time)) {
+    if (!waypoints->empty() && !(w.time > waypoints->back().time)) {
       return point + format(": time_from_start %.3f s does not follow the previous point's %.3f s", w.time,
-                            waypoints.back().time);
+                            waypoints->back().time);
     }
     if (w.time < 0) return point + format(": negative time_from_start %.3f s", w.time);
     if (w.time == 0) {  // a trajectory may begin with the state it starts from (MoveIt's do)
@@ -257,11 +255,15 @@ std::string JointGroupServer::acceptTrajectoryLocked(const control_msgs::FollowJ
       }
       continue;
     }
-    waypoints.push_back(std::move(w));
+    waypoints->push_back(std::move(w));
   }
-  if (waypoints.empty()) return "the trajectory has no point after time 0";
-  SplineTrajectory spline(q_, qd_, std::vector<double>(n, 0.0), waypoints);
-  for (size_t j = 0; j < n; ++j) {
+  if (waypoints->empty()) return "the trajectory has no point after time 0";
+  return "";
+}
+
+std::string JointGroupServer::velocityViolation(const SplineTrajectory& spline) const {
+  const auto names = chain_.names();
+  for (size_t j = 0; j < names.size(); ++j) {
     double when = 0;
     const double peak = spline.peakVelocity(j, &when);
     if (peak > chain_.joints[j].max_velocity * (1 + 1e-6)) {
@@ -271,22 +273,19 @@ std::string JointGroupServer::acceptTrajectoryLocked(const control_msgs::FollowJ
                     peak, when, chain_.joints[j].max_velocity);
     }
   }
-  // When it starts: now, or at the header's stamp (simulated time runs time_scale times faster).
-  double start = 0;
-  if (!goal.trajectory.header.stamp.isZero()) {
-    start = (ros::Time::now() - goal.trajectory.header.stamp).toSec() * time_scale_;
-    if (start >= spline.duration()) {
-      *code = FollowJointTrajectoryResult::OLD_HEADER_TIMESTAMP;
-      return format("the trajectory (header.stamp %.3f s, %.3f s long) ended before it arrived (now %.3f s)",
-                    goal.trajectory.header.stamp.toSec(), spline.duration(), ros::Time::now().toSec());
-    }
-  }
-  // Tolerances: the goal's where it gives one (> 0: that, < 0: none, 0: the controller's).
+  return "";
+}
+
+void JointGroupServer::tolerancesOf(const control_msgs::FollowJointTrajectoryGoal& goal, std::vector<double>* path,
+                                    std::vector<double>* at_goal) const {
+  // The goal's where it gives one (> 0: that, < 0: none, 0: the controller's).
+  const auto names = chain_.names();
   const std::string constraints = config_.controller + "/constraints/";
-  std::vector<double> path(n), at_goal(n);
-  for (size_t j = 0; j < n; ++j) {
-    path[j] = param(constraints + names[j] + "/trajectory", 0.0);
-    at_goal[j] = param(constraints + names[j] + "/goal", 0.0);
+  path->assign(names.size(), 0.0);
+  at_goal->assign(names.size(), 0.0);
+  for (size_t j = 0; j < names.size(); ++j) {
+    (*path)[j] = param(constraints + names[j] + "/trajectory", 0.0);
+    (*at_goal)[j] = param(constraints + names[j] + "/goal", 0.0);
   }
   auto apply = [&](const std::vector<control_msgs::JointTolerance>& given, std::vector<double>* tolerance) {
     for (const auto& t : given) {
@@ -300,24 +299,18 @@ std::string JointGroupServer::acceptTrajectoryLocked(const control_msgs::FollowJ
       if (t.position < 0) (*tolerance)[it - names.begin()] = 0.0;
     }
   };
-  apply(goal.path_tolerance, &path);
-  apply(goal.goal_tolerance, &at_goal);
-  const double goal_time =
-      goal.goal_time_tolerance.toSec() > 0 ? goal.goal_time_tolerance.toSec() : param(constraints + "goal_time", 0.0);
-  if (goal.goal_time_tolerance.toSec() < 0) return format("negative goal_time_tolerance %.3f s", goal.goal_time_tolerance.toSec());
+  apply(goal.path_tolerance, path);
+  apply(goal.goal_tolerance, at_goal);
+}
 
-  // Accepted. Faults: a joint sticking part way, a joint settling off its goal.
-  spline_ = std::move(spline);
-  path_tolerance_ = path;
-  goal_tolerance_ = at_goal;
-  goal_time_ = goal_time;
-  t_ = start;
+void JointGroupServer::planFaultsLocked() {
+  // A joint sticking part way, a joint settling off its goal.
   stuck_joint_ = -1;
   stuck_ = false;
   const double p_fault = param(config_.abort_probability_param, 0.0);
   if (p_fault > 0 && std::uniform_real_distribution<double>(0, 1)(rng_) < p_fault) {
     double most = -1;
-    for (size_t j = 0; j < n; ++j) {
+    for (size_t j = 0; j < q_.size(); ++j) {
       const double d = std::abs(spline_.goal()[j] - q_[j]);
       if (d > most) {
         most = d;
@@ -329,11 +322,48 @@ std::string JointGroupServer::acceptTrajectoryLocked(const control_msgs::FollowJ
   settle_joint_ = -1;
   std::string settle_joint;
   nh_.getParam(config_.settle_joint_param, settle_joint);
+  const auto names = chain_.names();
   const auto it = std::find(names.begin(), names.end(), settle_joint);
   if (it != names.end()) {
     settle_joint_ = static_cast<int>(it - names.begin());
     settle_error_ = param(config_.settle_error_param, 0.0);
   }
+}
+
+std::string JointGroupServer::acceptTrajectoryLocked(const control_msgs::FollowJointTrajectoryGoal& goal,
+                                                     const std::vector<int>& index, int* code) {
+  *code = FollowJointTrajectoryResult::INVALID_GOAL;
+  std::vector<Waypoint> waypoints;
+  std::string why = waypointsLocked(goal, index, &waypoints);
+  if (!why.empty()) return why;
+  const size_t n = q_.size();
+  SplineTrajectory spline(q_, qd_, std::vector<double>(n, 0.0), waypoints);
+  why = velocityViolation(spline);
+  if (!why.empty()) return why;
+  // When it starts: now, or at the header's stamp (simulated time runs time_scale times faster).
+  double start = 0;
+  if (!goal.trajectory.header.stamp.isZero()) {
+    start = (ros::Time::now() - goal.trajectory.header.stamp).toSec() * time_scale_;
+    if (start >= spline.duration()) {
+      *code = FollowJointTrajectoryResult::OLD_HEADER_TIMESTAMP;
+      return format("the trajectory (header.stamp %.3f s, %.3f s long) ended before it arrived (now %.3f s)",
+                    goal.trajectory.header.stamp.toSec(), spline.duration(), ros::Time::now().toSec());
+    }
+  }
+  std::vector<double> path, at_goal;
+  tolerancesOf(goal, &path, &at_goal);
+  const std::string constraints = config_.controller + "/constraints/";
+  const double goal_time =
+      goal.goal_time_tolerance.toSec() > 0 ? goal.goal_time_tolerance.toSec() : param(constraints + "goal_time", 0.0);
+  if (goal.goal_time_tolerance.toSec() < 0) return format("negative goal_time_tolerance %.3f s", goal.goal_time_tolerance.toSec());
+
+  // Accepted.
+  spline_ = std::move(spline);
+  path_tolerance_ = path;
+  goal_tolerance_ = at_goal;
+  goal_time_ = goal_time;
+  t_ = start;
+  planFaultsLocked();
   *code = 0;
   return "";
 }

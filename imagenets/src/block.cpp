@@ -128,14 +128,48 @@ PropertyValue Block::propertyValue(const std::string& name) const {
   return it->second;
 }
 
+const PropertySpec& Block::propertySpec(const std::string& name) const {
+  std::vector<const PropertySpec*> specs;
+  for (const PropertySpec& s : property_specs_) specs.push_back(&s);
+  return findPropertySpec(specs, name);
+}
+
+PropertyValue Block::parseProperty(const std::string& name, const std::string& text, const std::string& base_dir) const {
+  std::vector<const PropertySpec*> specs;
+  for (const PropertySpec& s : property_specs_) specs.push_back(&s);
+  return parseNamedProperty(specs, name, text, base_dir);
+}
+
 void Block::setProperty(const std::string& name, const PropertyValue& value) {
-  const PropertySpec* spec = findProperty(name);
-  if (!spec) throw PropertyError("unknown property '" + name + "'");
-  PropertyValue checked = spec->validate(value);
+  PropertyValue checked = propertySpec(name).validate(value);
   std::lock_guard<std::mutex> lock(values_mutex_);
   auto values = std::make_shared<PropertyValues>(*values_);
   (*values)[name] = std::move(checked);
   values_ = std::move(values);
+}
+
+bool samePorts(const Block& a, const Block& b) {
+  auto same = [](const std::vector<PortSpec>& x, const std::vector<PortSpec>& y) {
+    if (x.size() != y.size()) return false;
+    for (size_t i = 0; i < x.size(); ++i) {
+      if (x[i].name != y[i].name || x[i].type != y[i].type || x[i].optional != y[i].optional) return false;
+    }
+    return true;
+  };
+  return same(a.inputs(), b.inputs()) && same(a.outputs(), b.outputs());
+}
+
+void configureLike(Block& fresh, const Block& current, const PropertyValues& changes) {
+  if (!fresh.info()) fresh.setInfo(current.info());
+  for (const auto& [name, value] : current.propertyValues()) {
+    const auto changed = changes.find(name);
+    fresh.setProperty(name, changed != changes.end() ? changed->second : value);
+  }
+  for (const auto& [name, value] : changes) {
+    // One the current block does not know (all of its own are set above).
+    if (!current.findProperty(name)) fresh.setProperty(name, value);
+  }
+  fresh.configure();
 }
 
 }  // namespace imagenets

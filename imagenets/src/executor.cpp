@@ -12,6 +12,7 @@
 
 #include "feedback_search.h"
 #include "imagenets/block_invocation.h"
+#include "imagenets/registry.h"
 #include "thread_pool.h"
 
 namespace imagenets {
@@ -91,9 +92,7 @@ RunReport Executor::run() {
 
 RunReport Executor::runBlock(const std::string& block) {
   std::unique_lock<std::mutex> lock(mutex_);
-  int n = net_->findNode(block);
-  if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
-  markOutOfDate(n);
+  markOutOfDate(nodeIndex(block));
   RunReport report = runOutOfDate();
   lock.unlock();
   return finishRun(std::move(report));
@@ -101,12 +100,9 @@ RunReport Executor::runBlock(const std::string& block) {
 
 RunReport Executor::runBlockOnly(const std::string& block) {
   std::unique_lock<std::mutex> lock(mutex_);
-  const int n = net_->findNode(block);
-  if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
-  cancel_ = false;
-  running_ = true;
+  const int n = nodeIndex(block);
+  beginRun();
   RunReport report;
-  unfinished_.assign(unfinished_.size(), 0);
   execute(plan({n}, false), outputs_, report, nullptr);
   // What ran is up to date unless cancelled or it read inputs that an out-of-date block above it
   // will change on the next run; what reads its new outputs is not.
@@ -119,7 +115,7 @@ RunReport Executor::runBlockOnly(const std::string& block) {
   }
   for (int d : net_->descendants(n)) out_of_date_[d] = true;
   for (int m : ran) out_of_date_[m] = unfinished_[m] != 0 || stale_above[m];
-  report.cancelled = std::find(unfinished_.begin(), unfinished_.end(), 1) != unfinished_.end();
+  report.cancelled = anyUnfinished();
   lock.unlock();
   return finishRun(std::move(report));
 }
@@ -132,9 +128,18 @@ RunReport Executor::runAll() {
   return finishRun(std::move(report));
 }
 
-RunReport Executor::runOutOfDate() {
+void Executor::beginRun() {
   cancel_ = false;
   running_ = true;
+  unfinished_.assign(unfinished_.size(), 0);
+}
+
+bool Executor::anyUnfinished() const {
+  return std::find(unfinished_.begin(), unfinished_.end(), 1) != unfinished_.end();
+}
+
+RunReport Executor::runOutOfDate() {
+  beginRun();
   std::vector<int> nodes;
   for (int n : net_->topologicalOrder()) {
     if (out_of_date_[n]) {
@@ -144,7 +149,6 @@ RunReport Executor::runOutOfDate() {
     }
   }
   RunReport report;
-  unfinished_.assign(unfinished_.size(), 0);
   if (nodes != scheduled_nodes_ || run_schedule_.providers.empty()) {
     run_schedule_ = plan(nodes, false);
     scheduled_nodes_ = nodes;
@@ -152,7 +156,7 @@ RunReport Executor::runOutOfDate() {
   execute(run_schedule_, outputs_, report, nullptr);
   // A cancelled block keeps its previous outputs but stays out of date: the next run resumes.
   for (int n : nodes) out_of_date_[n] = unfinished_[n] != 0;
-  report.cancelled = std::find(unfinished_.begin(), unfinished_.end(), 1) != unfinished_.end();
+  report.cancelled = anyUnfinished();
   return report;
 }
 
@@ -228,35 +232,80 @@ void Executor::setInput(const std::string& block_port, const Value& value) {
   markOutOfDate(in.node);
 }
 
-void Executor::setProperty(const std::string& block, const std::string& property, const PropertyValue& value) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  int n = net_->findNode(block);
+int Executor::nodeIndex(const std::string& block) const {
+  const int n = net_->findNode(block);
   if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
+  return n;
+}
+
+std::unique_ptr<Block> Executor::reconfigured(int node, const PropertyValues& changes) const {
+  const Net::Node& n = net_->node(node);
+  if (!n.block->info()) throw std::logic_error("block '" + n.name + "' was not made by the registry");
+  std::unique_ptr<Block> fresh = n.block->info()->create();
+  fresh->setInfo(n.block->info());
+  if (n.feedback) {
+    const PortSpec& trace = *n.block->findOutput("feedback_trace");
+    fresh->attachOutput(trace.name, *trace.type, trace.doc);
+  }
+  // configure() sees the net it is part of, as when the net was built (a sub-net's includes).
+  NetSpec context;
+  context.origin = net_->origin();
+  context.base_dir = net_->baseDir();
+  context.include_chain = net_->includeChain();
+  LoadContext::Scope scope(context);
   try {
-    net_->node(n).block->setProperty(property, value);
-  } catch (const PropertyError& e) {
-    throw NetError({net_->origin() + ": block '" + block + "': property '" + property + "': " + e.what()});
+    configureLike(*fresh, *n.block, changes);
+  } catch (const NetError& e) {
+    std::vector<std::string> errors;
+    for (const auto& inner : e.errors()) errors.push_back(net_->origin() + ": block '" + n.name + "': " + inner);
+    throw NetError(errors);
+  } catch (const std::exception& e) {
+    throw NetError({net_->origin() + ": block '" + n.name + "': " + e.what()});
+  }
+  return fresh;
+}
+
+Executor::PropertyChange Executor::setProperties(const std::string& block, const PropertyValues& values) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const int n = nodeIndex(block);
+  Net::Node& node = net_->node(n);
+  bool changed = false;
+  for (const auto& [name, value] : values) {
+    try {
+      const PropertyValue valid = node.block->propertySpec(name).validate(value);
+      changed = changed || valid != node.block->propertyValue(name);
+    } catch (const PropertyError& e) {
+      const std::string why = node.block->findProperty(name) ? "property '" + name + "': " + e.what() : e.what();
+      throw NetError({net_->origin() + ": block '" + block + "': " + why});
+    }
+  }
+  if (changed) {
+    std::unique_ptr<Block> fresh = reconfigured(n, values);
+    if (!samePorts(*fresh, *node.block)) return PropertyChange::NeedsRebuild;
+    node.block = std::move(fresh);
   }
   markOutOfDate(n);
+  return PropertyChange::Applied;
+}
+
+void Executor::setProperty(const std::string& block, const std::string& property, const PropertyValue& value) {
+  if (setProperties(block, {{property, value}}) == PropertyChange::NeedsRebuild) {
+    throw NetError({net_->origin() + ": block '" + block + "': property '" + property + "': " + toString(value) +
+                    " changes the block's ports; build the net anew with it"});
+  }
 }
 
 void Executor::markOutOfDate(const std::string& block) {
   std::lock_guard<std::mutex> lock(mutex_);
-  const int n = net_->findNode(block);
-  if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
-  markOutOfDate(n);
+  markOutOfDate(nodeIndex(block));
 }
 
 void Executor::setPropertyText(const std::string& block, const std::string& property, const std::string& text) {
-  int n = net_->findNode(block);
-  if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
-  const PropertySpec* spec = net_->node(n).block->findProperty(property);
-  if (!spec) throw NetError({net_->origin() + ": block '" + block + "': unknown property '" + property + "'"});
   PropertyValue v;
   try {
-    v = spec->parse(text);  // a relative path resolves against the working directory
-  } catch (const std::exception& e) {
-    throw NetError({net_->origin() + ": block '" + block + "': property '" + property + "': " + e.what()});
+    v = net_->node(nodeIndex(block)).block->parseProperty(property, text);  // relative: the working directory
+  } catch (const PropertyError& e) {
+    throw NetError({net_->origin() + ": block '" + block + "': " + e.what()});
   }
   setProperty(block, property, v);
 }
@@ -267,10 +316,7 @@ Value Executor::output(const std::string& block_port) const {
   return outputs_[out.node][out.port];
 }
 
-BlockStats Executor::stats(const std::string& block) const {
-  int n = net_->findNode(block);
-  if (n < 0) throw NetError({net_->origin() + ": no block named '" + block + "'"});
-  return statsOf(n);
+BlockStats Executor::stats(const std::string& block) const { return statsOf(nodeIndex(block));
 }
 
 BlockStats Executor::statsOf(int node) const {
@@ -475,36 +521,40 @@ std::vector<double> Executor::initialCandidates(int node, const Store& store) co
 
 void Executor::runFeedback(int node, Store& store, RunReport& report) {
   const Net::Node& n = net_->node(node);
-  const FeedbackSpec& f = *n.feedback;
-  const auto& region = feedback_region_[node];
   const int missing_input = missingInput(*n.block, gatherInputs(node, store));
-  if (missing_input >= 0) {
-    const std::string missing = explainMissing(node, missing_input);
-    for (int m : region) {
-      store[m].assign(net_->node(m).block->outputs().size(), Value());
-      finish(m, BlockStatus::NotRun, m == node ? missing : "block '" + n.name + "' did not run", 0.0, false);
-    }
-    std::lock_guard<std::mutex> lock(report_mutex_);
-    report.not_run.push_back(n.name + ": " + missing);
-    return;
-  }
-
-  // The search (feedback_search.h) decides which candidates to try; here they only run. A batch
-  // runs in chunks, each chunk's trials in parallel, and the scores go back in batch order, so a
-  // sequential search (chunks of one) tries exactly the same candidates and keeps the same best.
-  const PropertySpec* property = n.block->findProperty(f.property);
-  FeedbackSearch search(f, initialCandidates(node, store), [property](double v) {
+  if (missing_input >= 0) return skipFeedbackRegion(node, explainMissing(node, missing_input), store, report);
+  // The search (feedback_search.h) decides which candidates to try; here they only run.
+  const PropertySpec* property = n.block->findProperty(n.feedback->property);
+  FeedbackSearch search(*n.feedback, initialCandidates(node, store), [property](double v) {
     try {
       return toNumber(property->fromNumber(v));
     } catch (const PropertyError&) {
       return v;  // out of range: its trial fails and counts as invalid
     }
   });
-  const size_t chunk_size = f.parallel ? static_cast<size_t>(2 * threads()) : 1;
-  Store best_store;
   if (watched()) {
-    for (int m : region) emitBlockEvent(RunEventKind::BlockStarted, m, statsOf(m));
+    for (int m : feedback_region_[node]) emitBlockEvent(RunEventKind::BlockStarted, m, statsOf(m));
   }
+  Store best_store = sweep(node, search, store);
+  if (cancelled()) return skipCancelled(node, report);
+  keepBestTrial(node, search, std::move(best_store), store, report);
+}
+
+void Executor::skipFeedbackRegion(int node, const std::string& missing, Store& store, RunReport& report) {
+  for (int m : feedback_region_[node]) {
+    store[m].assign(net_->node(m).block->outputs().size(), Value());
+    finish(m, BlockStatus::NotRun, m == node ? missing : "block '" + net_->node(node).name + "' did not run", 0.0, false);
+  }
+  std::lock_guard<std::mutex> lock(report_mutex_);
+  report.not_run.push_back(net_->node(node).name + ": " + missing);
+}
+
+Executor::Store Executor::sweep(int node, FeedbackSearch& search, const Store& store) {
+  // A batch runs in chunks, each chunk's trials in parallel, and the scores go back in batch
+  // order, so a sequential search (chunks of one) tries exactly the same candidates and keeps the
+  // same best.
+  const size_t chunk_size = net_->node(node).feedback->parallel ? static_cast<size_t>(2 * threads()) : 1;
+  Store best_store;
   for (auto batch = search.nextBatch(); !batch.empty() && !cancelled(); batch = search.nextBatch()) {
     for (size_t first = 0; first < batch.size() && !search.finished(); first += chunk_size) {
       const size_t count = std::min(chunk_size, batch.size() - first);
@@ -520,30 +570,34 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
           break;
         }
         const bool more = search.report(scores[k]);
-        const auto& trial = search.trials().back();
         if (search.best() == static_cast<int>(search.trials().size()) - 1) best_store = std::move(stores[k]);
-        RunEvent event;
-        event.kind = RunEventKind::FeedbackTrial;
-        event.block = n.name;
-        event.message = f.property;
-        event.value = trial.value;
-        event.score = trial.score;
-        event.index = static_cast<int>(search.trials().size());
-        event.count = static_cast<int>(search.candidates());
-        emit(event);
+        emitTrial(node, search);
         if (!more) break;
       }
     }
   }
-  if (cancelled()) {
-    skipCancelled(node, report);
-    return;
-  }
+  return best_store;
+}
 
-  // The trace: every (value, score) in the order tried, why the search stopped, the chosen value.
+void Executor::emitTrial(int node, const FeedbackSearch& search) {
+  const auto& trial = search.trials().back();
+  RunEvent event;
+  event.kind = RunEventKind::FeedbackTrial;
+  event.block = net_->node(node).name;
+  event.message = net_->node(node).feedback->property;
+  event.value = trial.value;
+  event.score = trial.score;
+  event.index = static_cast<int>(search.trials().size());
+  event.count = static_cast<int>(search.candidates());
+  emit(event);
+}
+
+Value Executor::feedbackTrace(int node, const FeedbackSearch& search) const {
+  // Every (value, score) in the order tried, why the search stopped, the chosen value.
+  const FeedbackSpec& f = *net_->node(node).feedback;
   const int best = search.best();
   auto trace = boost::make_shared<FeedbackTrace>();
-  trace->block = n.name;
+  trace->block = net_->node(node).name;
   trace->property = f.property;
   trace->score = f.score_block + "." + f.score_port;
   trace->maximize = f.maximize;
@@ -557,15 +611,21 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
   trace->found = best >= 0;
   trace->chosen_value = best >= 0 ? search.trials()[best].value : std::numeric_limits<double>::quiet_NaN();
   trace->chosen_score = best >= 0 ? search.trials()[best].score : std::numeric_limits<double>::quiet_NaN();
-  const int trace_port = n.block->outputIndex("feedback_trace");
+  return PortType::of<FeedbackTrace>().wrap<FeedbackTrace>(trace);
+}
 
-  if (best < 0) {
+void Executor::keepBestTrial(int node, const FeedbackSearch& search, Store best_store, Store& store, RunReport& report) {
+  const Net::Node& n = net_->node(node);
+  const auto& region = feedback_region_[node];
+  const int trace_port = n.block->outputIndex("feedback_trace");
+  if (search.best() < 0) {
     // No valid candidate: the region produces nothing, so downstream blocks do not run; the
     // trace still goes out so a plot shows what was tried.
-    std::string message = "block '" + n.name + "': feedback: no valid candidate: no value of '" + f.property +
-                          "' produced a score at " + trace->score;
+    const std::string message = "block '" + n.name + "': feedback: no valid candidate: no value of '" +
+                                n.feedback->property + "' produced a score at " + n.feedback->score_block + "." +
+                                n.feedback->score_port;
     for (int m : region) store[m].assign(net_->node(m).block->outputs().size(), Value());
-    store[node][trace_port] = PortType::of<FeedbackTrace>().wrap<FeedbackTrace>(trace);
+    store[node][trace_port] = feedbackTrace(node, search);
     finish(node, BlockStatus::Failed, message, 0.0, false);
     for (int m : region) {
       if (m != node) finish(m, BlockStatus::NotRun, "feedback of '" + n.name + "' found no valid candidate", 0.0, false);
@@ -575,7 +635,7 @@ void Executor::runFeedback(int node, Store& store, RunReport& report) {
     return;
   }
   for (int m : region) store[m] = best_store[m];
-  store[node][trace_port] = PortType::of<FeedbackTrace>().wrap<FeedbackTrace>(trace);
+  store[node][trace_port] = feedbackTrace(node, search);
   for (int m : region) finish(m, BlockStatus::Ok, "", 0.0, false);
   std::lock_guard<std::mutex> lock(report_mutex_);
   for (int m : region) report.ran.push_back(net_->node(m).name);

@@ -16,6 +16,7 @@ std::string describe(const BlockSpec& b) { return "block '" + b.name + "' (" + b
 NetBuilder::NetBuilder(const NetSpec& spec) : spec_(spec), scope_(spec_), net_(std::make_unique<Net>()) {
   net_->origin_ = spec.origin;
   net_->base_dir_ = spec.base_dir;
+  net_->include_chain_ = spec.include_chain;
 }
 
 NetBuilder::~NetBuilder() = default;
@@ -50,19 +51,10 @@ void NetBuilder::createBlocks() {
     node.block = BlockRegistry::instance().create(b.type);
     bool ok = true;
     for (const PropertySetting& s : b.properties) {
-      const PropertySpec* ps = node.block->findProperty(s.name);
-      if (!ps) {
-        std::string known;
-        for (const auto& p : node.block->propertySpecs()) known += (known.empty() ? "" : ", ") + p.name();
-        errors_.push_back(s.loc.str() + ": " + describe(b) + ": unknown property '" + s.name +
-                          "' (known: " + (known.empty() ? "none" : known) + ")");
-        ok = false;
-        continue;
-      }
       try {
-        node.block->setProperty(s.name, ps->parse(s.text, spec_.base_dir));
+        node.block->setProperty(s.name, node.block->parseProperty(s.name, s.text, spec_.base_dir));
       } catch (const std::exception& e) {
-        errors_.push_back(s.loc.str() + ": " + describe(b) + ": property '" + s.name + "': " + e.what());
+        errors_.push_back(s.loc.str() + ": " + describe(b) + ": " + e.what());
         ok = false;
       }
     }

@@ -75,6 +75,25 @@ bool parseInt(const std::string& s, int& out) {
 
 }  // namespace
 
+const PropertySpec& findPropertySpec(const std::vector<const PropertySpec*>& specs, const std::string& name) {
+  std::string known;
+  for (const PropertySpec* s : specs) {
+    if (s->name() == name) return *s;
+    known += (known.empty() ? "" : ", ") + s->name();
+  }
+  throw PropertyError("unknown property '" + name + "' (known: " + (known.empty() ? "none" : known) + ")");
+}
+
+PropertyValue parseNamedProperty(const std::vector<const PropertySpec*>& specs, const std::string& name,
+                                 const std::string& text, const std::string& base_dir) {
+  const PropertySpec& spec = findPropertySpec(specs, name);
+  try {
+    return spec.parse(text, base_dir);
+  } catch (const std::exception& e) {
+    throw PropertyError("property '" + name + "': " + e.what());
+  }
+}
+
 std::string resolvePath(const std::string& path, const std::string& base_dir) {
   std::string out = path;
   static const std::regex find_re(R"(\$\(find ([A-Za-z0-9_]+)\))");

@@ -100,31 +100,10 @@ class FollowJointTrajectory : public Block {
 
   void process(Context& ctx) override {
     const auto target = ctx.input<sensor_msgs::JointState>("configuration");
-    const std::string action_property = ctx.property<std::string>("action");
+    checkConfiguration(*target);
+    const std::vector<std::string> joints = goalJoints(ctx, *target);
     const std::string topic = ctx.property<std::string>("joint_states");
     const double state_timeout = ctx.property<double>("state_timeout");
-    if (target->name.size() != target->position.size()) {
-      throw BlockError("input 'configuration': " + std::to_string(target->name.size()) + " names but " +
-                       std::to_string(target->position.size()) + " positions");
-    }
-    if (target->name.empty()) throw BlockError("input 'configuration' names no joint");
-    for (size_t i = 0; i < target->name.size(); ++i) {
-      if (!std::isfinite(target->position[i])) {
-        throw BlockError("input 'configuration': joint '" + target->name[i] + "' has no finite position");
-      }
-      if (std::count(target->name.begin(), target->name.end(), target->name[i]) > 1) {
-        throw BlockError("input 'configuration' names joint '" + target->name[i] + "' twice");
-      }
-    }
-    // The goal's joints: the controller's (property joints) or the input's.
-    std::vector<std::string> joints = splitNames(ctx.property<std::string>("joints"));
-    if (joints.empty()) joints = target->name;
-    for (const auto& n : target->name) {
-      if (std::find(joints.begin(), joints.end(), n) == joints.end()) {
-        throw BlockError("input 'configuration' names joint '" + n + "', which is not one of the controller's (property joints: " +
-                         joined(joints) + ")");
-      }
-    }
     hardware::ensureRosNode();
     const auto now = hardware::jointPositions(topic, joints, state_timeout);
     std::vector<double> goal_positions = now->position;
@@ -137,8 +116,44 @@ class FollowJointTrajectory : public Block {
     tolerances.path = ctx.property<double>("path_tolerance");
     tolerances.goal = ctx.property<double>("goal_tolerance");
     tolerances.goal_time = ctx.property<double>("goal_time_tolerance");
+    move(ctx, motion, tolerances);
+    // Where the joints are now: joint_states stamped after the result.
+    ctx.output("reached", hardware::jointPositions(topic, joints, state_timeout, ros::Time::now()));
+  }
 
-    ActionClientLease<FollowJointTrajectoryAction> lease(action_property);
+ private:
+  static void checkConfiguration(const sensor_msgs::JointState& target) {
+    if (target.name.size() != target.position.size()) {
+      throw BlockError("input 'configuration': " + std::to_string(target.name.size()) + " names but " +
+                       std::to_string(target.position.size()) + " positions");
+    }
+    if (target.name.empty()) throw BlockError("input 'configuration' names no joint");
+    for (size_t i = 0; i < target.name.size(); ++i) {
+      if (!std::isfinite(target.position[i])) {
+        throw BlockError("input 'configuration': joint '" + target.name[i] + "' has no finite position");
+      }
+      if (std::count(target.name.begin(), target.name.end(), target.name[i]) > 1) {
+        throw BlockError("input 'configuration' names joint '" + target.name[i] + "' twice");
+      }
+    }
+  }
+
+  // The goal's joints: the controller's (property joints) or the input's.
+  static std::vector<std::string> goalJoints(Context& ctx, const sensor_msgs::JointState& target) {
+    std::vector<std::string> joints = splitNames(ctx.property<std::string>("joints"));
+    if (joints.empty()) joints = target.name;
+    for (const auto& n : target.name) {
+      if (std::find(joints.begin(), joints.end(), n) == joints.end()) {
+        throw BlockError("input 'configuration' names joint '" + n + "', which is not one of the controller's (property joints: " +
+                         joined(joints) + ")");
+      }
+    }
+    return joints;
+  }
+
+  // Sends the goal and waits for its end; BlockError saying why when it did not succeed.
+  static void move(Context& ctx, const hardware::PointToPointMotion& motion, const hardware::TrajectoryTolerances& tolerances) {
+    ActionClientLease<FollowJointTrajectoryAction> lease(ctx.property<std::string>("action"));
     const std::string& action = lease.action();
     auto& client = lease.client();
     const double server_timeout = ctx.property<double>("server_timeout");
@@ -147,7 +162,6 @@ class FollowJointTrajectory : public Block {
                        " s (property server_timeout; is its controller running?)" + knownServers());
     }
     if (ctx.cancelled()) throw RunCancelled();
-
     const ros::WallTime sent = ros::WallTime::now();
     client.sendGoal(hardware::trajectoryGoal(motion, tolerances));
     bool lost = false;  // the server went away mid-motion (the robot's driver stopped): fail at once
@@ -174,22 +188,26 @@ class FollowJointTrajectory : public Block {
       throw BlockError("'" + action + "' did not finish within " + std::to_string(wait) +
                        " s (the trajectory's duration, goal_time_tolerance and property result_timeout); goal canceled");
     }
-    const auto state = client.getState();
-    const auto result = client.getResult();
+    checkResult(ctx, action, client.getState(), client.getResult(), motion, tolerances, elapsed);
+  }
+
+  // A goal that did not succeed: the controller's code and text and, from the joints measured
+  // now, which joint was outside which tolerance.
+  static void checkResult(Context& ctx, const std::string& action, const actionlib::SimpleClientGoalState& state,
+                          const FollowJointTrajectoryResult::ConstPtr& result, const hardware::PointToPointMotion& motion,
+                          const hardware::TrajectoryTolerances& tolerances, double elapsed) {
     const int code = result ? result->error_code : FollowJointTrajectoryResult::SUCCESSFUL;
-    if (state != actionlib::SimpleClientGoalState::SUCCEEDED || code != FollowJointTrajectoryResult::SUCCESSFUL) {
-      sensor_msgs::JointStatePtr measured;
-      try {
-        measured = hardware::jointPositions(topic, joints, state_timeout);
-      } catch (const BlockError&) {
-        // Said without the measurement.
-      }
-      const std::string text = result && !result->error_string.empty() ? result->error_string : state.getText();
-      throw BlockError(hardware::trajectoryFailure(action, state.toString(), code, text, motion, tolerances, elapsed,
-                                                   measured.get()));
+    if (state == actionlib::SimpleClientGoalState::SUCCEEDED && code == FollowJointTrajectoryResult::SUCCESSFUL) return;
+    sensor_msgs::JointStatePtr measured;
+    try {
+      measured = hardware::jointPositions(ctx.property<std::string>("joint_states"), motion.joints,
+                                          ctx.property<double>("state_timeout"));
+    } catch (const BlockError&) {
+      // Said without the measurement.
     }
-    // Where the joints are now: joint_states stamped after the result.
-    ctx.output("reached", hardware::jointPositions(topic, joints, state_timeout, ros::Time::now()));
+    const std::string text = result && !result->error_string.empty() ? result->error_string : state.getText();
+    throw BlockError(hardware::trajectoryFailure(action, state.toString(), code, text, motion, tolerances, elapsed,
+                                                 measured.get()));
   }
 };
 

@@ -46,17 +46,11 @@ BagCalibration calibrateFromBag(const BagCalibrationOptions& o) {
       o.sample_net.empty() ? imagenets::packageFile("imagenets_calibration", "config/nets/calibration_sample_bag.yaml") : o.sample_net;
   // The node's net, its sample net swapped as the node swaps in the replay's.
   imagenets::NetSpec spec = imagenets::parseNetFile(net);
-  bool swapped = false;
-  for (auto& b : spec.blocks) {
-    if (b.name != "samples") continue;
-    for (auto& p : b.properties) {
-      if (p.name == "net") {
-        p.text = sample_net;
-        swapped = true;
-      }
-    }
+  imagenets::BlockSpec* samples = spec.findBlock("samples");
+  if (!samples || !samples->findSetting("net")) {
+    throw std::runtime_error(net + ": no block 'samples' with a property 'net' (the sample net to run per sample)");
   }
-  if (!swapped) throw std::runtime_error(net + ": no block 'samples' with a property 'net' (the sample net to run per sample)");
+  samples->setProperty("net", sample_net);
   imagenets::Executor exec(imagenets::Net::build(spec));
   auto setAll = [&](const std::string& property, const std::string& text, bool paths_only) {
     const auto set = imagenets::setPropertyInNetTree(

@@ -19,30 +19,22 @@ bool isTranslation(const std::string& name) {
   return last == "x" || last == "y" || last == "z";
 }
 
-int calibrationPlan(const Args& args) {
-  std::string method = "joint", description;
-  int loops = 5, poses_per_loop = 2, poses = 0;
-  double noise = 0.05;
-  bool list = false;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--method") {
-      method = flagValue(args, i);
-    } else if (args[i] == "--loops") {
-      loops = intValue(args, i);
-    } else if (args[i] == "--poses-per-loop") {
-      poses_per_loop = intValue(args, i);
-    } else if (args[i] == "--poses") {
-      poses = intValue(args, i);
-    } else if (args[i] == "--noise") {
-      noise = doubleValue(args, i);
-    } else if (args[i] == "--list") {
-      list = true;
-    } else if (args[i] == "--description") {
-      description = flagValue(args, i);
-    } else {
-      throw unknownArgument(args[i]);
-    }
-  }
+void declare(Flags& f) {
+  f.add()("description", po::value<std::string>()->default_value(""), "the robot's description YAML (required)")
+      ("method", po::value<std::string>()->default_value("joint"), "joint or paper")
+      ("loops", po::value<int>()->default_value(5), "loops of the plan")
+      ("poses-per-loop", po::value<int>()->default_value(2), "poses per loop of the joint method")
+      ("poses", po::value<int>()->default_value(0), "this many poses instead (0: loops x poses per loop)")
+      ("noise", po::value<double>()->default_value(0.05), "image point noise in px")
+      ("list", po::bool_switch(), "list every pose");
+}
+
+int calibrationPlan(const Options& flags) {
+  const std::string method = flags["method"].as<std::string>(), description = flags["description"].as<std::string>();
+  const int loops = flags["loops"].as<int>(), poses_per_loop = flags["poses-per-loop"].as<int>();
+  const int poses = flags["poses"].as<int>();
+  const double noise = flags["noise"].as<double>();
+  const bool list = flags["list"].as<bool>();
   if (method != "joint" && method != "paper") throw UsageError("--method '" + method + "': expected joint or paper");
   if (loops < 1 || poses_per_loop < 1 || poses < 0) throw UsageError("--loops and --poses-per-loop must be >= 1, --poses >= 0");
   if (!(noise > 0)) throw UsageError("--noise must be positive (px)");
@@ -96,7 +88,7 @@ IMAGENETS_TOOL_COMMAND(calibration_plan, "calibration-plan",
                        "[--noise PX] [--list]",
                        "what a calibration plan's poses will determine: per parameter prior vs predicted posterior, "
                        "unobservable ones, condition number",
-                       calibrationPlan);
+                       declare, calibrationPlan);
 
 }  // namespace tool
 }  // namespace imagenets

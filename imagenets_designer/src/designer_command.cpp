@@ -12,29 +12,28 @@ namespace imagenets {
 namespace tool {
 namespace {
 
-int run(const Args& args) {
+void declare(Flags& f) {
+  const designer::DesignerServer::Options defaults;
+  f.add()("port", po::value<int>()->default_value(defaults.port), "the HTTP port (0: any free one)")
+      ("bind", po::value<std::string>()->default_value(defaults.bind), "the address to listen on")
+      ("root", po::value<std::vector<std::string>>(), "a folder nets may be opened from and saved to (repeatable)");
+  f.operand("NET", 1, "the net to open");
+  f.acceptRosArguments();
+}
+
+int run(const Options& o) {
   designer::DesignerServer::Options options;
-  std::string net;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--port") {
-      options.port = intValue(args, i);
-      if (options.port < 0 || options.port > 65535) {
-        throw UsageError("--port " + std::to_string(options.port) + " is out of range 0..65535");
-      }
-    } else if (args[i] == "--bind") {
-      options.bind = flagValue(args, i);
-    } else if (args[i] == "--root") {
-      const std::string dir = flagValue(args, i);
-      if (!boost::filesystem::is_directory(dir)) throw UsageError("--root '" + dir + "' is not a folder");
-      options.session.roots.push_back(dir);
-    } else if (args[i].rfind("__", 0) == 0) {
-      continue;  // roslaunch's __name:= / __log:=
-    } else if (net.empty() && !(args[i].size() > 1 && args[i][0] == '-')) {
-      net = args[i];
-    } else {
-      throw unknownArgument(args[i]);
-    }
+  options.port = o["port"].as<int>();
+  if (options.port < 0 || options.port > 65535) {
+    throw UsageError("--port " + std::to_string(options.port) + " is out of range 0..65535");
   }
+  options.bind = o["bind"].as<std::string>();
+  for (const auto& dir : strings(o, "root")) {
+    if (!boost::filesystem::is_directory(dir)) throw UsageError("--root '" + dir + "' is not a folder");
+    options.session.roots.push_back(dir);
+  }
+  const auto nets = strings(o, "NET");
+  const std::string net = nets.empty() ? std::string() : nets.front();
   // Without a net or a root, new nets are saved in the working folder.
   if (net.empty() && options.session.roots.empty()) options.session.roots.push_back(boost::filesystem::current_path().string());
   BlockRegistry::instance().loadLibraries();  // every block library installed, for the block browser
@@ -61,7 +60,7 @@ int run(const Args& args) {
 
 IMAGENETS_TOOL_COMMAND(designer, "designer", "designer [NET] [--port 8080] [--bind 127.0.0.1] [--root DIR]...",
                        "serve the ImageNet Designer (web page: build, run and inspect nets) on the in-process executor",
-                       run);
+                       declare, run);
 
 }  // namespace tool
 }  // namespace imagenets

@@ -17,20 +17,21 @@ bool hasPortOfType(const std::vector<PortSpec>& ports, const std::string& type) 
   return false;
 }
 
-int run(const Args& args) {
-  std::string category, input_type, output_type, library;
-  bool plugin_xml = false;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--category") category = flagValue(args, i);
-    else if (args[i] == "--input-type") input_type = flagValue(args, i);
-    else if (args[i] == "--output-type") output_type = flagValue(args, i);
-    else if (args[i] == "--plugin-xml") plugin_xml = true;
-    else if (args[i] == "--library") library = flagValue(args, i);
-    else throw unknownArgument(args[i]);
-  }
+void declare(Flags& f) {
+  f.add()("category", po::value<std::string>()->default_value(""), "only the blocks of this category")
+      ("input-type", po::value<std::string>()->default_value(""), "only blocks with an input of this type")
+      ("output-type", po::value<std::string>()->default_value(""), "only blocks with an output of this type")
+      ("plugin-xml", po::bool_switch(), "print the nodelet plug-in XML instead")
+      ("library", po::value<std::string>()->default_value(""), "with --plugin-xml: only the blocks of this library");
+}
+
+int run(const Options& o) {
+  const std::string category = o["category"].as<std::string>();
+  const std::string input_type = o["input-type"].as<std::string>();
+  const std::string output_type = o["output-type"].as<std::string>();
   BlockRegistry::instance().loadLibraries();
-  if (plugin_xml) {
-    std::cout << nodeletPluginXml(library);
+  if (o["plugin-xml"].as<bool>()) {
+    std::cout << nodeletPluginXml(o["library"].as<std::string>());
     return 0;
   }
   std::string current;
@@ -77,7 +78,7 @@ int run(const Args& args) {
 }  // namespace
 
 IMAGENETS_TOOL_COMMAND(blocks, "blocks", "blocks [--category C] [--input-type T] [--output-type T] [--plugin-xml [--library NAME]]",
-                       "list the registered blocks with ports, properties and docs", run);
+                       "list the registered blocks with ports, properties and docs", declare, run);
 
 }  // namespace tool
 }  // namespace imagenets

@@ -68,144 +68,169 @@ void printTargetDetection(std::ostream& out, const target::TargetDescription& t,
 
 std::string defaultNet() { return imagenets::packageFile("imagenets_blocks", "config/nets/robust_marker_detection.yaml"); }
 
-int run(const Args& args) {
+void declare(Flags& f) {
+  f.add()("marker", po::value<std::string>()->default_value(""), "the square marker (MARKER.yaml)")
+      ("target", po::value<std::string>()->default_value(""), "a target file (square marker, AprilTags, ChArUco)")
+      ("camera", po::value<std::string>()->default_value(""), "the camera's calibration (CAMERA.yaml)")
+      ("threshold", po::value<int>(), "a fixed threshold 0..255 instead of the net's feedback")
+      ("feedback", po::value<std::string>(), "FROM:TO:STEP: the feedback's threshold range instead of the net's")
+      ("coarse-to-fine", po::bool_switch(), "search the --feedback range coarse to fine")
+      ("net", po::value<std::string>()->default_value(""), "the detection net (default: robust_marker_detection.yaml)");
+  f.operand("IMAGE", -1, "the images");
+}
+
+// What to detect in which images, checked.
+struct Request {
   std::string marker_path, target_path, camera_path, net_path;
   marker::ThresholdMode mode;
-  bool fixed = false, feedback = false, coarse_to_fine = false;
+  bool threshold_given = false;  // --threshold or --feedback
   std::vector<std::string> images;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "--marker") marker_path = flagValue(args, i);
-    else if (a == "--target") target_path = flagValue(args, i);
-    else if (a == "--camera") camera_path = flagValue(args, i);
-    else if (a == "--net") net_path = flagValue(args, i);
-    else if (a == "--threshold") {
-      const std::string v = flagValue(args, i);
-      char* end = nullptr;
-      const long t = std::strtol(v.c_str(), &end, 10);
-      if (*end || t < 0 || t > 255) throw UsageError("--threshold '" + v + "' is not an integer 0..255");
-      mode.kind = marker::ThresholdMode::Kind::Fixed;
-      mode.fixed = static_cast<int>(t);
-      fixed = true;
-    } else if (a == "--feedback") {
-      const std::string v = flagValue(args, i);
-      if (std::sscanf(v.c_str(), "%lf:%lf:%lf", &mode.from, &mode.to, &mode.step) != 3 || !(mode.step > 0) ||
-          mode.to < mode.from || mode.from < 0 || mode.to > 255) {
-        throw UsageError("--feedback '" + v + "' is not FROM:TO:STEP within 0..255");
-      }
-      mode.kind = marker::ThresholdMode::Kind::Range;
-      feedback = true;
-    } else if (a == "--coarse-to-fine") {
-      mode.search = "coarse_to_fine";
-      coarse_to_fine = true;
-    }
-    else if (a.size() > 1 && a[0] == '-') throw unknownArgument(a);
-    else images.push_back(a);
-  }
-  if (fixed && feedback) throw UsageError("give --threshold or --feedback, not both");
-  if (coarse_to_fine && !feedback) {
-    throw UsageError("--coarse-to-fine orders a --feedback FROM:TO:STEP range (without one the net's own feedback runs)");
-  }
-  if (!marker_path.empty() && !target_path.empty()) throw UsageError("give --marker or --target, not both");
-  if (marker_path.empty() && target_path.empty()) throw UsageError("--marker MARKER.yaml or --target TARGET.yaml is required");
-  if (camera_path.empty()) throw UsageError("--camera CAMERA.yaml is required");
-  if (images.empty()) throw UsageError("no IMAGE given");
-  if (net_path.empty()) net_path = defaultNet();
+};
 
-  if (!boost::filesystem::exists(camera_path)) {
-    std::cerr << "imagenets detect: --camera: no such file '" << camera_path << "'\n";
-    return 1;
+marker::ThresholdMode thresholdMode(const Options& o) {
+  marker::ThresholdMode mode;
+  if (o.count("threshold") && o.count("feedback")) throw UsageError("give --threshold or --feedback, not both");
+  if (o.count("threshold")) {
+    const int t = o["threshold"].as<int>();
+    if (t < 0 || t > 255) throw UsageError("--threshold '" + std::to_string(t) + "' is not an integer 0..255");
+    mode.kind = marker::ThresholdMode::Kind::Fixed;
+    mode.fixed = t;
   }
+  if (o.count("feedback")) {
+    const std::string v = o["feedback"].as<std::string>();
+    if (std::sscanf(v.c_str(), "%lf:%lf:%lf", &mode.from, &mode.to, &mode.step) != 3 || !(mode.step > 0) ||
+        mode.to < mode.from || mode.from < 0 || mode.to > 255) {
+      throw UsageError("--feedback '" + v + "' is not FROM:TO:STEP within 0..255");
+    }
+    mode.kind = marker::ThresholdMode::Kind::Range;
+  }
+  if (o["coarse-to-fine"].as<bool>()) {
+    if (!o.count("feedback")) {
+      throw UsageError("--coarse-to-fine orders a --feedback FROM:TO:STEP range (without one the net's own feedback runs)");
+    }
+    mode.search = "coarse_to_fine";
+  }
+  return mode;
+}
+
+Request request(const Options& o) {
+  Request r;
+  r.mode = thresholdMode(o);
+  r.threshold_given = o.count("threshold") || o.count("feedback");
+  r.marker_path = o["marker"].as<std::string>();
+  r.target_path = o["target"].as<std::string>();
+  r.camera_path = o["camera"].as<std::string>();
+  r.net_path = o["net"].as<std::string>();
+  r.images = strings(o, "IMAGE");
+  if (!r.marker_path.empty() && !r.target_path.empty()) throw UsageError("give --marker or --target, not both");
+  if (r.marker_path.empty() && r.target_path.empty()) throw UsageError("--marker MARKER.yaml or --target TARGET.yaml is required");
+  if (r.camera_path.empty()) throw UsageError("--camera CAMERA.yaml is required");
+  if (r.images.empty()) throw UsageError("no IMAGE given");
+  if (r.net_path.empty()) r.net_path = defaultNet();
+  return r;
+}
+
+boost::shared_ptr<sensor_msgs::CameraInfo> loadCamera(const std::string& path) {
+  if (!boost::filesystem::exists(path)) throw std::runtime_error("--camera: no such file '" + path + "'");
   boost::shared_ptr<sensor_msgs::CameraInfo> info;
   std::string camera_name;
   try {
-    info = boost::make_shared<sensor_msgs::CameraInfo>(readCameraInfo(camera_path, &camera_name));
+    info = boost::make_shared<sensor_msgs::CameraInfo>(readCameraInfo(path, &camera_name));
   } catch (const std::exception& e) {
-    std::cerr << "imagenets detect: --camera: " << e.what() << "\n";
-    return 1;
+    throw std::runtime_error(std::string("--camera: ") + e.what());
   }
   info->header.frame_id = camera_name.empty() ? "camera" : camera_name + "_optical_frame";
-  // A target file: named errors before any image; a square marker's goes on as --marker.
+  return info;
+}
+
+// A target file: named errors before any image. A square marker's goes on as --marker (null).
+std::shared_ptr<const target::TargetDescription> loadTarget(Request& r) {
+  if (r.target_path.empty()) return nullptr;
   std::shared_ptr<const target::TargetDescription> target;
-  if (!target_path.empty()) {
+  try {
+    target = target::TargetDescription::loadCached(r.target_path);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("--target: ") + e.what());
+  }
+  if (target->type == target::TargetType::SquareMarker) {
+    r.marker_path = target->marker_file;
+    return nullptr;
+  }
+  if (r.threshold_given) {
+    throw UsageError("--threshold / --feedback belong to a square marker; " + r.target_path + " is a " +
+                     target->typeName() + " target (found without a threshold)");
+  }
+  return target;
+}
+
+// Why an image cannot be used ("" when it can).
+std::string readImage(const std::string& path, const sensor_msgs::CameraInfo& info, const std::string& camera_path,
+                      cv::Mat& image) {
+  if (!boost::filesystem::exists(path)) return "no such file";
+  if ((image = cv::imread(path, cv::IMREAD_COLOR)).empty()) return "cannot read image (not an image file?)";
+  if (image.cols != static_cast<int>(info.width) || image.rows != static_cast<int>(info.height)) {
+    return "image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) + " but camera '" +
+           camera_path + "' is " + std::to_string(info.width) + "x" + std::to_string(info.height);
+  }
+  return "";
+}
+
+void printMarkerDetection(std::ostream& out, const imagenets::MarkerDetection& d) {
+  out << "  found: " << (d.found ? "true" : "false") << "\n";
+  out << "  confidence: " << d.confidence << "\n";
+  out << "  threshold: " << (std::isfinite(d.threshold) ? std::to_string(static_cast<int>(d.threshold)) : ".nan") << "\n";
+  if (!d.found) return;
+  out << "  points:";
+  for (const auto& p : d.points) out << (&p == &d.points.front() ? " [" : ", ") << "[" << p.x << ", " << p.y << "]";
+  out << "]\n";
+  out << "  translation: [" << d.pose.position.x << ", " << d.pose.position.y << ", " << d.pose.position.z << "]\n";
+  out << "  quaternion: [" << d.pose.orientation.x << ", " << d.pose.orientation.y << ", " << d.pose.orientation.z
+      << ", " << d.pose.orientation.w << "]\n";
+  out << "  reprojection_error_px: " << d.reprojection_error << "\n";
+}
+
+// The detection net, or the target's detection, on one readable image: its YAML, or the error.
+std::string detectIn(const cv::Mat& image, const sensor_msgs::CameraInfoConstPtr& info, const render::CameraModel& camera,
+                     const target::TargetDescription* target, marker::MarkerDetectionNet* net, std::ostream& out) {
+  if (target) {
+    cv::Mat gray;
+    cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
     try {
-      target = target::TargetDescription::loadCached(target_path);
+      printTargetDetection(out, *target, target::detectTarget(gray, camera, *target));
+      return "";
     } catch (const std::exception& e) {
-      std::cerr << "imagenets detect: --target: " << e.what() << "\n";
-      return 1;
-    }
-    if (target->type == target::TargetType::SquareMarker) {
-      marker_path = target->marker_file;
-      target.reset();
-    } else if (fixed || feedback) {
-      throw UsageError("--threshold / --feedback belong to a square marker; " + target_path + " is a " +
-                       target->typeName() + " target (found without a threshold)");
+      return e.what();
     }
   }
+  std_msgs::Header header;
+  header.frame_id = info->header.frame_id;
+  const marker::MarkerDetectionNet::Result r = net->run(cv_bridge::CvImage(header, "bgr8", image).toImageMsg(), info);
+  if (r.error.empty()) printMarkerDetection(out, *r.detection);
+  return r.error;
+}
+
+int run(const Options& o) {
+  Request r = request(o);
+  const boost::shared_ptr<sensor_msgs::CameraInfo> info = loadCamera(r.camera_path);
+  const std::shared_ptr<const target::TargetDescription> target = loadTarget(r);
   std::unique_ptr<marker::MarkerDetectionNet> net;
   if (!target) {
-    try {
-      marker::MarkerDescription::load(marker_path);  // named error for a bad marker file, before any image
-      net.reset(new marker::MarkerDetectionNet(net_path, marker_path, mode, 0));
-    } catch (const std::exception& e) {
-      std::cerr << "imagenets detect: " << e.what() << "\n";
-      return 1;
-    }
+    marker::MarkerDescription::load(r.marker_path);  // named error for a bad marker file, before any image
+    net.reset(new marker::MarkerDetectionNet(r.net_path, r.marker_path, r.mode, 0));
   }
   const render::CameraModel camera = render::CameraModel::fromCameraInfo(*info);
-
   int errors = 0;
   std::ostringstream out;
   out << std::setprecision(9);
-  for (const auto& path : images) {
+  for (const auto& path : r.images) {
     out << "- image: " << quoted(path) << "\n";
-    std::string error;
     cv::Mat image;
-    if (!boost::filesystem::exists(path)) error = "no such file";
-    else if ((image = cv::imread(path, cv::IMREAD_COLOR)).empty()) error = "cannot read image (not an image file?)";
-    else if (image.cols != static_cast<int>(info->width) || image.rows != static_cast<int>(info->height)) {
-      error = "image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) + " but camera '" +
-              camera_path + "' is " + std::to_string(info->width) + "x" + std::to_string(info->height);
-    }
-    if (target && error.empty()) {
-      cv::Mat gray;
-      cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
-      target::TargetDetection d;
-      try {
-        d = target::detectTarget(gray, camera, *target);
-      } catch (const std::exception& e) {
-        error = e.what();
-      }
-      if (error.empty()) {
-        printTargetDetection(out, *target, d);
-        continue;
-      }
-    }
-    marker::MarkerDetectionNet::Result r;
-    if (error.empty()) {
-      std_msgs::Header header;
-      header.frame_id = info->header.frame_id;
-      r = net->run(cv_bridge::CvImage(header, "bgr8", image).toImageMsg(), info);
-      error = r.error;
-    }
-    if (!error.empty()) {
-      ++errors;
-      out << "  error: " << quoted(path + ": " + error) << "\n";
-      std::cerr << "imagenets detect: " << path << ": " << error << "\n";
-      continue;
-    }
-    const auto& d = *r.detection;
-    out << "  found: " << (d.found ? "true" : "false") << "\n";
-    out << "  confidence: " << d.confidence << "\n";
-    out << "  threshold: " << (std::isfinite(d.threshold) ? std::to_string(static_cast<int>(d.threshold)) : ".nan") << "\n";
-    if (!d.found) continue;
-    out << "  points:";
-    for (const auto& p : d.points) out << (&p == &d.points.front() ? " [" : ", ") << "[" << p.x << ", " << p.y << "]";
-    out << "]\n";
-    out << "  translation: [" << d.pose.position.x << ", " << d.pose.position.y << ", " << d.pose.position.z << "]\n";
-    out << "  quaternion: [" << d.pose.orientation.x << ", " << d.pose.orientation.y << ", " << d.pose.orientation.z
-        << ", " << d.pose.orientation.w << "]\n";
-    out << "  reprojection_error_px: " << d.reprojection_error << "\n";
+    std::string error = readImage(path, *info, r.camera_path, image);
+    if (error.empty()) error = detectIn(image, info, camera, target.get(), net.get(), out);
+    if (error.empty()) continue;
+    ++errors;
+    out << "  error: " << quoted(path + ": " + error) << "\n";
+    std::cerr << "imagenets detect: " << path << ": " << error << "\n";
   }
   std::cout << out.str();
   return errors ? 1 : 0;
@@ -219,7 +244,7 @@ IMAGENETS_TOOL_COMMAND(detect, "detect",
                        "find a square marker (robust detection net, its threshold feedback unless "
                        "--threshold/--feedback replace it) or a target (AprilTags, ChArUco: corners with ids) in "
                        "images; print YAML: points, confidence, pose",
-                       run);
+                       declare, run);
 
 }  // namespace tool
 }  // namespace imagenets

@@ -10,17 +10,17 @@ namespace imagenets {
 namespace tool {
 namespace {
 
-int run(const Args& args) {
-  std::string net_path, out;
-  bool expand = false;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "-o" || args[i] == "--output") out = flagValue(args, i);
-    else if (args[i] == "--expand") expand = true;
-    else if (net_path.empty() && !(args[i].size() > 1 && args[i][0] == '-')) net_path = args[i];
-    else throw unknownArgument(args[i]);
-  }
-  if (net_path.empty() || out.empty()) throw UsageError("expects a net file and -o FILE");
-  const std::string dot = toDot(*Net::loadFile(net_path), expand);
+void declare(Flags& f) {
+  f.add()("output,o", po::value<std::string>(), "the picture: FILE.svg, FILE.png or FILE.dot")
+      ("expand", po::bool_switch(), "draw sub-nets inside their blocks");
+  f.operand("NET", 1, "the net file");
+}
+
+int run(const Options& o) {
+  const auto nets = strings(o, "NET");
+  const std::string out = stringFlag(o, "output");
+  if (nets.empty() || out.empty()) throw UsageError("expects a net file and -o FILE");
+  const std::string dot = toDot(*Net::loadFile(nets.front()), o["expand"].as<bool>());
   const auto ext_pos = out.rfind('.');
   const std::string format = ext_pos == std::string::npos ? "svg" : out.substr(ext_pos + 1);
   if (format == "dot") {
@@ -38,7 +38,7 @@ int run(const Args& args) {
 }  // namespace
 
 IMAGENETS_TOOL_COMMAND(graph, "graph", "graph NET -o FILE.svg|.png|.dot [--expand]",
-                       "draw the net: blocks, ports coloured by data type, links, feedback; --expand draws sub-nets inside", run);
+                       "draw the net: blocks, ports coloured by data type, links, feedback; --expand draws sub-nets inside", declare, run);
 
 }  // namespace tool
 }  // namespace imagenets

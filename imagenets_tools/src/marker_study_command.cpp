@@ -42,64 +42,102 @@ void parseRange(const std::string& text, double* from, double* to, double* step)
   }
 }
 
-int run(const Args& args) {
+void declare(Flags& f) {
+  f.add()("output-dir,o", po::value<std::string>()->default_value("marker_study"), "where the CSV, tables and maps go")
+      ("conditions", po::value<std::string>(), "paper, hard, all or NAME,... (default: the paper's)")
+      ("quick", po::bool_switch(), "a coarse grid; the other flags still change it")
+      ("marker", po::value<std::string>(), "the marker (M.yaml)")
+      ("camera", po::value<std::string>(), "the camera (C.yaml)")
+      ("net", po::value<std::string>(), "the detection net (`detect`)")
+      ("calibration-net", po::value<std::string>(), "the calibration's detection net (`calibration`)")
+      ("decoys", po::bool_switch(), "also views with a decoy in the marker's place: false positives")
+      ("tag-target", po::value<std::string>(), "the AprilTag target libapriltag detects")
+      ("board-target", po::value<std::string>(), "the ChArUco board target")
+      ("no-targets", po::bool_switch(), "neither target")
+      ("pan", po::value<std::string>(), "FROM:TO:STEP in degrees (e.g. 0:350:10)")
+      ("tilt", po::value<std::string>(), "FROM:TO:STEP in degrees (e.g. 0:70:10)")
+      ("threshold", po::value<int>(), "a fixed threshold besides the feedback (e.g. 40)")
+      ("threads", po::value<int>(), "worker threads")
+      ("supersampling", po::value<int>(), "rendering supersampling (e.g. 4)")
+      ("seed", po::value<unsigned>(), "the noise's seed")
+      ("scale-mm", po::value<double>()->default_value(0), "the error maps' colour scale (0: the largest error)")
+      ("from-csv", po::value<std::string>(), "re-plot and re-summarise an earlier STUDY.csv instead of running");
+}
+
+marker::StudyConfig studyConfig(const Options& o) {
   marker::StudyConfig config;
-  std::string out_dir = "marker_study";
-  double scale_mm = 0;
-  std::string from_csv;  // re-plot / re-summarise an earlier run instead of running the study
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "--marker") config.marker = flagValue(args, i);
-    else if (a == "--camera") config.camera = flagValue(args, i);
-    else if (a == "--net") config.net = flagValue(args, i);
-    else if (a == "--calibration-net") config.calibration_net = flagValue(args, i);
-    else if (a == "--decoys") config.decoys = true;
-    else if (a == "--no-targets") config.tag_target.clear(), config.board_target.clear();
-    else if (a == "--tag-target") config.tag_target = flagValue(args, i);
-    else if (a == "--board-target") config.board_target = flagValue(args, i);
-    else if (a == "--output-dir" || a == "-o") out_dir = flagValue(args, i);
-    else if (a == "--quick") marker::makeQuick(&config);  // flags after it still change the grid
-    else if (a == "--pan") parseRange(flagValue(args, i), &config.pan_from, &config.pan_to, &config.pan_step);
-    else if (a == "--tilt") parseRange(flagValue(args, i), &config.tilt_from, &config.tilt_to, &config.tilt_step);
-    else if (a == "--threshold") config.fixed_threshold = intValue(args, i);
-    else if (a == "--conditions") {
-      const std::string names = flagValue(args, i);
-      try {
-        config.conditions = marker::selectConditions(names);
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(std::string("--conditions: ") + e.what());
-      }
-    } else if (a == "--threads") config.threads = intValue(args, i);
-    else if (a == "--supersampling") config.supersampling = intValue(args, i);
-    else if (a == "--seed") config.seed = static_cast<unsigned>(std::stoul(flagValue(args, i)));
-    else if (a == "--scale-mm") scale_mm = doubleValue(args, i);
-    else if (a == "--from-csv") from_csv = flagValue(args, i);
-    else throw unknownArgument(a);
-  }
-  boost::filesystem::create_directories(out_dir);
-  std::vector<marker::StudyRow> rows;
-  if (!from_csv.empty()) {
-    std::ifstream in(from_csv);
-    if (!in) throw std::runtime_error(from_csv + ": cannot read");
-    std::stringstream text;
-    text << in.rdbuf();
-    rows = marker::fromCsv(text.str());
-    std::vector<marker::StudyCondition> conditions;
-    for (const auto& r : rows) {
-      if (std::none_of(conditions.begin(), conditions.end(), [&](const auto& c) { return c.name == r.condition; })) {
-        conditions.push_back(marker::selectConditions(r.condition).front());
-      }
+  if (o["quick"].as<bool>()) marker::makeQuick(&config);
+  auto text = [&](const char* flag, std::string* to) {
+    if (o.count(flag)) *to = o[flag].as<std::string>();
+  };
+  text("marker", &config.marker);
+  text("camera", &config.camera);
+  text("net", &config.net);
+  text("calibration-net", &config.calibration_net);
+  config.decoys = o["decoys"].as<bool>() || config.decoys;
+  if (o["no-targets"].as<bool>()) config.tag_target.clear(), config.board_target.clear();
+  text("tag-target", &config.tag_target);
+  text("board-target", &config.board_target);
+  if (o.count("pan")) parseRange(o["pan"].as<std::string>(), &config.pan_from, &config.pan_to, &config.pan_step);
+  if (o.count("tilt")) parseRange(o["tilt"].as<std::string>(), &config.tilt_from, &config.tilt_to, &config.tilt_step);
+  if (o.count("threshold")) config.fixed_threshold = o["threshold"].as<int>();
+  if (o.count("conditions")) {
+    try {
+      config.conditions = marker::selectConditions(o["conditions"].as<std::string>());
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--conditions: ") + e.what());
     }
-    config.conditions = conditions;
-  } else {
-    const auto t0 = std::chrono::steady_clock::now();
-    rows = marker::runStudy(config, [&](int done, int total) {
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::cerr << "\rmarker study: " << done << "/" << total << " views, " << static_cast<int>(s) << " s elapsed, ~"
-                << static_cast<int>(s / done * (total - done)) << " s left   " << std::flush;
-    });
-    std::cerr << "\n";
   }
+  if (o.count("threads")) config.threads = o["threads"].as<int>();
+  if (o.count("supersampling")) config.supersampling = o["supersampling"].as<int>();
+  if (o.count("seed")) config.seed = o["seed"].as<unsigned>();
+  return config;
+}
+
+// The rows of an earlier run; its conditions become the config's.
+std::vector<marker::StudyRow> readRows(const std::string& csv, marker::StudyConfig& config) {
+  std::ifstream in(csv);
+  if (!in) throw std::runtime_error(csv + ": cannot read");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::vector<marker::StudyRow> rows = marker::fromCsv(text.str());
+  std::vector<marker::StudyCondition> conditions;
+  for (const auto& r : rows) {
+    if (std::none_of(conditions.begin(), conditions.end(), [&](const auto& c) { return c.name == r.condition; })) {
+      conditions.push_back(marker::selectConditions(r.condition).front());
+    }
+  }
+  config.conditions = conditions;
+  return rows;
+}
+
+std::vector<marker::StudyRow> runWithProgress(const marker::StudyConfig& config) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto rows = marker::runStudy(config, [&](int done, int total) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::cerr << "\rmarker study: " << done << "/" << total << " views, " << static_cast<int>(s) << " s elapsed, ~"
+              << static_cast<int>(s / done * (total - done)) << " s left   " << std::flush;
+  });
+  std::cerr << "\n";
+  return rows;
+}
+
+// One colour scale for every picture: up to the largest error of any method, rounded up to
+// 0.5 mm (at least 1 mm).
+double errorScale(const std::vector<marker::StudySummaryRow>& summary) {
+  double scale_mm = 0;
+  for (const auto& s : summary) {
+    if (std::isfinite(s.max_mm)) scale_mm = std::max(scale_mm, s.max_mm);
+  }
+  return std::max(1.0, std::ceil(scale_mm * 2) / 2);
+}
+
+int run(const Options& o) {
+  marker::StudyConfig config = studyConfig(o);
+  const std::string out_dir = o["output-dir"].as<std::string>();
+  boost::filesystem::create_directories(out_dir);
+  const std::vector<marker::StudyRow> rows =
+      o.count("from-csv") ? readRows(o["from-csv"].as<std::string>(), config) : runWithProgress(config);
   const auto summary = marker::summarize(rows);
   writeAtomically(out_dir + "/study.csv", marker::toCsv(rows));
   const std::string table = marker::toMarkdown(summary, config) +
@@ -108,14 +146,7 @@ int run(const Args& args) {
                             "libapriltag's):\n\n" +
                             marker::sideBySideMarkdown(summary);
   writeAtomically(out_dir + "/summary.md", table);
-  if (!(scale_mm > 0)) {
-    // One colour scale for every picture: up to the largest error of any method, rounded up to
-    // 0.5 mm (at least 1 mm).
-    for (const auto& s : summary) {
-      if (std::isfinite(s.max_mm)) scale_mm = std::max(scale_mm, s.max_mm);
-    }
-    scale_mm = std::max(1.0, std::ceil(scale_mm * 2) / 2);
-  }
+  const double scale_mm = o["scale-mm"].as<double>() > 0 ? o["scale-mm"].as<double>() : errorScale(summary);
   for (const auto& condition : config.conditions) {
     const std::string path = out_dir + "/error_map_" + condition.name + ".png";
     writePng(path, marker::errorMapImage(rows, condition.name, scale_mm));
@@ -137,7 +168,7 @@ IMAGENETS_TOOL_COMMAND(marker_study, "marker-study",
                        "[--from-csv STUDY.csv]",
                        "the paper's marker accuracy study (5.1, Fig. 5.2) and harder imaging (far, blur, noise, dim, "
                        "dark wall), libapriltag beside: CSV, tables, error maps; --decoys: false positives on decoys",
-                       run);
+                       declare, run);
 
 }  // namespace tool
 }  // namespace imagenets

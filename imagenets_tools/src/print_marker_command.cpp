@@ -84,15 +84,15 @@ std::string pdfOf(const cv::Mat& gray, double size_m) {
   return pdf;
 }
 
-int run(const Args& args) {
-  std::string marker_path, out_path;
-  double dpi = 300;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--marker") marker_path = flagValue(args, i);
-    else if (args[i] == "--output" || args[i] == "-o") out_path = flagValue(args, i);
-    else if (args[i] == "--dpi") dpi = doubleValue(args, i);
-    else throw unknownArgument(args[i]);
-  }
+void declare(Flags& f) {
+  f.add()("marker", po::value<std::string>(), "the marker description (MARKER.yaml)")
+      ("output,o", po::value<std::string>(), "OUT.png (with its resolution) or OUT.pdf")
+      ("dpi", po::value<double>()->default_value(300), "dots per inch, 50..2400");
+}
+
+int run(const Options& o) {
+  const std::string marker_path = stringFlag(o, "marker"), out_path = stringFlag(o, "output");
+  const double dpi = o["dpi"].as<double>();
   if (marker_path.empty() || out_path.empty()) throw UsageError("needs --marker MARKER.yaml and -o OUT.png|OUT.pdf");
   if (!(dpi >= 50 && dpi <= 2400)) throw UsageError("--dpi must be 50..2400");
   const std::string ext = boost::filesystem::path(out_path).extension().string();
@@ -137,7 +137,8 @@ int run(const Args& args) {
 }  // namespace
 
 IMAGENETS_TOOL_COMMAND(print_marker, "print-marker", "print-marker --marker MARKER.yaml -o OUT.png|OUT.pdf [--dpi 300]",
-                       "write a square marker at true scale for printing (PNG with resolution, or PDF)", run);
+                       "write a square marker at true scale for printing (PNG with resolution, or PDF)", declare,
+                       run);
 
 }  // namespace tool
 }  // namespace imagenets

@@ -36,28 +36,22 @@ RunObserver progressPrinter(const Net& net, bool trials) {
   };
 }
 
-int run(const Args& args) {
-  std::string net_path, output_dir;
-  std::vector<std::string> sets, set_alls;
-  ExecutorOptions options;
-  options.cpu_time = true;  // the table below shows it
-  bool quiet = false, trials = false;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--set") sets.push_back(flagValue(args, i));
-    else if (args[i] == "--set-all") set_alls.push_back(flagValue(args, i));
-    else if (args[i] == "--quiet" || args[i] == "-q") quiet = true;
-    else if (args[i] == "--trials") trials = true;
-    else if (args[i] == "--output-dir" || args[i] == "-o") output_dir = flagValue(args, i);
-    else if (args[i] == "--threads") options.threads = intValue(args, i);
-    else if (args[i].size() > 1 && args[i][0] == '-') throw unknownArgument(args[i]);
-    else if (net_path.empty()) net_path = args[i];
-    else throw unknownArgument(args[i]);
-  }
-  if (net_path.empty()) throw UsageError("expects a net file");
+void declare(Flags& f) {
+  f.add()("set", po::value<std::vector<std::string>>(),
+          "block.property=value: as if written in the net file (also what a block reads when configured)")
+      ("set-all", po::value<std::vector<std::string>>(),
+       "property=value: for every block of the net and its sub-nets that has the property")
+      ("output-dir,o", po::value<std::string>(), "write every output port here (images as PNG, others as YAML)")
+      ("threads", po::value<int>()->default_value(0), "worker threads (0 = number of cores)")
+      ("quiet,q", po::bool_switch(), "no progress lines")
+      ("trials", po::bool_switch(), "a progress line for every feedback trial too");
+  f.operand("NET", 1, "the net file");
+}
 
-  // --set changes the net as if written in its file, before its blocks are made: so it also sets
-  // what a block reads once when it is configured (a sub-net's `net`, ...). Relative paths resolve
-  // against the net file, as there.
+// --set changes the net as if written in its file, before its blocks are made: so it also sets
+// what a block reads once when it is configured (a sub-net's `net`, ...). Relative paths resolve
+// against the net file, as there.
+NetSpec netWithSettings(const std::string& net_path, const std::vector<std::string>& sets) {
   NetSpec spec = parseNetFile(net_path);
   for (const auto& s : sets) {
     const auto eq = s.find('='), dot = s.find('.');
@@ -65,32 +59,31 @@ int run(const Args& args) {
       throw UsageError("--set '" + s + "' is not block.property=value");
     }
     const std::string block = s.substr(0, dot), property = s.substr(dot + 1, eq - dot - 1);
-    auto b = std::find_if(spec.blocks.begin(), spec.blocks.end(), [&](const BlockSpec& x) { return x.name == block; });
-    if (b == spec.blocks.end()) throw UsageError("--set '" + s + "': " + net_path + " has no block '" + block + "'");
-    auto p = std::find_if(b->properties.begin(), b->properties.end(),
-                          [&](const PropertySetting& x) { return x.name == property; });
-    if (p == b->properties.end()) p = b->properties.insert(b->properties.end(), PropertySetting{property, "", b->loc});
-    p->text = s.substr(eq + 1);
+    BlockSpec* b = spec.findBlock(block);
+    if (!b) throw UsageError("--set '" + s + "': " + net_path + " has no block '" + block + "'");
+    b->setProperty(property, s.substr(eq + 1));
   }
-  Executor executor(Net::build(spec), options);
-  // --set-all: one value for every block of the net and its sub-nets that has the property (e.g.
-  // the robot description every calibration block reads). Relative paths: against the working
-  // directory (a value for blocks of several net files).
+  return spec;
+}
+
+// --set-all: one value for every block of the net and its sub-nets that has the property (e.g.
+// the robot description every calibration block reads). Relative paths: against the working
+// directory (a value for blocks of several net files).
+void setAll(Executor& executor, const std::string& net_path, const std::vector<std::string>& set_alls, bool quiet) {
   for (const auto& s : set_alls) {
     const auto eq = s.find('=');
     if (eq == std::string::npos || eq == 0) throw UsageError("--set-all '" + s + "' is not property=value");
     const std::string property = s.substr(0, eq);
     const auto set = setPropertyInNetTree(executor, property, s.substr(eq + 1));
     if (set.empty()) throw UsageError("--set-all '" + s + "': no block of " + net_path + " or its sub-nets has a property '" + property + "'");
-    if (!quiet) {
-      std::cout << "--set-all " << property << ":";
-      for (const auto& b : set) std::cout << " " << b;
-      std::cout << "\n";
-    }
+    if (quiet) continue;
+    std::cout << "--set-all " << property << ":";
+    for (const auto& b : set) std::cout << " " << b;
+    std::cout << "\n";
   }
-  if (!quiet) executor.addObserver(progressPrinter(executor.net(), trials));
-  const RunReport report = executor.run();
+}
 
+void printTimings(const Executor& executor, const RunReport& report, const std::string& net_path) {
   std::cout << "net " << net_path << ": " << report.ran.size() << " blocks ran, " << report.failed.size()
             << " failed, " << report.not_run.size() << " not run (" << executor.threads() << " threads)\n";
   std::cout << "  " << std::left << std::setw(24) << "block" << std::setw(10) << "status" << std::right
@@ -104,20 +97,36 @@ int run(const Args& args) {
   }
   for (const auto& f : report.failed) std::cout << "FAILED " << f << "\n";
   for (const auto& n : report.not_run) std::cout << "not run: " << n << "\n";
+}
 
-  if (!output_dir.empty()) {
-    boost::filesystem::create_directories(output_dir);
-    size_t written = 0;
-    for (const auto& node : executor.net().nodes()) {
-      for (const auto& port : node.block->outputs()) {
-        Value v = executor.output(node.name + "." + port.name);
-        if (!v) continue;
-        std::cout << "  wrote " << writeValue(v, output_dir, node.name + "." + port.name) << "\n";
-        ++written;
-      }
+void writeOutputs(const Executor& executor, const std::string& output_dir) {
+  boost::filesystem::create_directories(output_dir);
+  size_t written = 0;
+  for (const auto& node : executor.net().nodes()) {
+    for (const auto& port : node.block->outputs()) {
+      Value v = executor.output(node.name + "." + port.name);
+      if (!v) continue;
+      std::cout << "  wrote " << writeValue(v, output_dir, node.name + "." + port.name) << "\n";
+      ++written;
     }
-    std::cout << written << " outputs written to " << output_dir << "\n";
   }
+  std::cout << written << " outputs written to " << output_dir << "\n";
+}
+
+int run(const Options& o) {
+  const auto nets = strings(o, "NET");
+  if (nets.empty()) throw UsageError("expects a net file");
+  const std::string& net_path = nets.front();
+  const bool quiet = o["quiet"].as<bool>();
+  ExecutorOptions options;
+  options.cpu_time = true;  // the table shows it
+  options.threads = o["threads"].as<int>();
+  Executor executor(Net::build(netWithSettings(net_path, strings(o, "set"))), options);
+  setAll(executor, net_path, strings(o, "set-all"), quiet);
+  if (!quiet) executor.addObserver(progressPrinter(executor.net(), o["trials"].as<bool>()));
+  const RunReport report = executor.run();
+  printTimings(executor, report, net_path);
+  if (o.count("output-dir")) writeOutputs(executor, o["output-dir"].as<std::string>());
   return report.ok() ? 0 : 1;
 }
 
@@ -128,7 +137,7 @@ IMAGENETS_TOOL_COMMAND(run, "run",
                        "[--quiet] [--trials]",
                        "run a net, showing progress (--trials: every feedback trial); write its outputs (images as "
                        "PNG, others as YAML); print timings",
-                       run);
+                       declare, run);
 
 }  // namespace tool
 }  // namespace imagenets

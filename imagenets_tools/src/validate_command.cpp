@@ -8,10 +8,10 @@ namespace imagenets {
 namespace tool {
 namespace {
 
-int run(const Args& args) {
-  for (const auto& a : args) {
-    if (a.size() > 1 && a[0] == '-') throw unknownArgument(a);
-  }
+void declare(Flags& f) { f.operand("NET", 1, "the net file"); }
+
+int run(const Options& o) {
+  const Args args = strings(o, "NET");
   if (args.size() != 1) throw UsageError("expects one net file");
   try {
     Executor executor(Net::loadFile(args[0]), ExecutorOptions{1});
@@ -25,7 +25,7 @@ int run(const Args& args) {
 
 }  // namespace
 
-IMAGENETS_TOOL_COMMAND(validate, "validate", "validate NET", "check a net file; prints OK or every error", run);
+IMAGENETS_TOOL_COMMAND(validate, "validate", "validate NET", "check a net file; prints OK or every error", declare, run);
 
 }  // namespace tool
 }  // namespace imagenets

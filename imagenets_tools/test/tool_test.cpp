@@ -270,6 +270,35 @@ TEST(Tool, AWrongOptionIsNamedWithTheUsage) {
   expectContains(r.output, "imagenets run: --threads 'many' is not an integer");
 }
 
+TEST(Tool, HelpListsTheFlagsWithTheirDefaults) {
+  Result r = tool("run --help", true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  for (const char* flag : {"--set arg", "--set-all arg", "-o [ --output-dir ] arg", "--threads arg (=0)", "-q [ --quiet ]",
+                           "--trials", "NET"}) {
+    expectContains(r.output, flag);
+  }
+  r = tool("detect -h", true);
+  for (const char* flag : {"--marker arg", "--target arg", "--camera arg", "--threshold arg", "--feedback arg",
+                           "--coarse-to-fine", "--net arg", "IMAGE"}) {
+    expectContains(r.output, flag);
+  }
+}
+
+TEST(Tool, FlagErrorsNameTheFlagOrArgument) {
+  Result r = tool("run config/nets/threshold_demo.yaml --thread 2");  // no guessing of abbreviations
+  EXPECT_EQ(r.status, 2) << r.output;
+  expectContains(r.output, "imagenets run: unknown option '--thread'");
+  r = tool("validate config/nets/threshold_demo.yaml other.yaml");
+  EXPECT_EQ(r.status, 2) << r.output;
+  expectContains(r.output, "imagenets validate: unexpected argument 'other.yaml'");
+  r = tool("run config/nets/threshold_demo.yaml --output-dir");
+  EXPECT_EQ(r.status, 2) << r.output;
+  expectContains(r.output, "imagenets run: --output-dir needs a value");
+  r = tool("print-marker --marker m.yaml -o m.png --dpi high");
+  EXPECT_EQ(r.status, 2) << r.output;
+  expectContains(r.output, "imagenets print-marker: --dpi 'high' is not a number");
+}
+
 TEST(Tool, UnknownCommandAndMissingArgumentsAreUsageErrors) {
   EXPECT_EQ(tool("frobnicate").status, 2);
   Result r = tool("graph config/nets/threshold_demo.yaml");

@@ -61,11 +61,13 @@ cv::Point2d Axes::toPixel(double x, double y) const {
           area.y + area.height - (y - y_min) / (y_max - y_min) * area.height};
 }
 
-cv::Mat plotSeries(const std::vector<Series>& series, const Options& options, Axes* axes_out) {
-  if (options.width < 160 || options.height < 120) {
-    throw std::invalid_argument("plot size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
-                                " is below 160x120");
-  }
+namespace {
+
+// Text size for a picture of this height.
+double fontScale(const Options& options) { return std::clamp(options.height / 800.0, 0.35, 0.6); }
+
+// The data's ranges (and the marked point's), padded, and the plot area inside the margins.
+Axes axesFor(const std::vector<Series>& series, const Options& options) {
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
   for (const auto& s : series) {
     if (s.x.size() != s.y.size()) {
@@ -80,18 +82,31 @@ cv::Mat plotSeries(const std::vector<Series>& series, const Options& options, Ax
   }
   if (std::isfinite(options.marked_x)) x_lo = std::min(x_lo, options.marked_x), x_hi = std::max(x_hi, options.marked_x);
   if (std::isfinite(options.marked_y)) y_lo = std::min(y_lo, options.marked_y), y_hi = std::max(y_hi, options.marked_y);
-
   Axes axes;
   range(x_lo, x_hi, axes.x_min, axes.x_max, 0.03);
   range(y_lo, y_hi, axes.y_min, axes.y_max, 0.08);
-  const double scale = std::clamp(options.height / 800.0, 0.35, 0.6);
+  const double scale = fontScale(options);
   const int left = static_cast<int>(70 * scale / 0.45), bottom = static_cast<int>(48 * scale / 0.45);
   const int top = options.note.empty() ? static_cast<int>(34 * scale / 0.45) : static_cast<int>(50 * scale / 0.45);
   const int right = 16;
   axes.area = cv::Rect(left, top, options.width - left - right, options.height - top - bottom);
+  return axes;
+}
 
-  cv::Mat img(options.height, options.width, CV_8UC3, cv::Scalar(255, 255, 255));
-  // Ticks, grid and labels.
+// Vertical y label: drawn horizontally, then rotated into the left margin.
+void drawYLabel(cv::Mat& img, const Axes& axes, const std::string& y_label, double scale) {
+  int base = 0;
+  const cv::Size size = cv::getTextSize(y_label, kFont, scale, 1, &base);
+  cv::Mat label(size.height + base + 4, size.width + 4, CV_8UC3, cv::Scalar(255, 255, 255));
+  cv::putText(label, y_label, {2, size.height + 2}, kFont, scale, kInk, 1, cv::LINE_AA);
+  cv::rotate(label, label, cv::ROTATE_90_COUNTERCLOCKWISE);
+  const int x0 = 2, y0 = std::max(0, axes.area.y + axes.area.height / 2 - label.rows / 2);
+  if (label.rows + y0 <= img.rows && label.cols + x0 <= img.cols) label.copyTo(img(cv::Rect(x0, y0, label.cols, label.rows)));
+}
+
+// Ticks, grid, frame, title, note and axis labels.
+void drawFrame(cv::Mat& img, const Axes& axes, const Options& options) {
+  const double scale = fontScale(options);
   const double x_step = niceStep(axes.x_max - axes.x_min, std::max(2, axes.area.width / 90));
   const double y_step = niceStep(axes.y_max - axes.y_min, std::max(2, axes.area.height / 60));
   for (double v = std::ceil(axes.x_min / x_step) * x_step; v <= axes.x_max + 1e-9 * x_step; v += x_step) {
@@ -112,19 +127,12 @@ cv::Mat plotSeries(const std::vector<Series>& series, const Options& options, Ax
     text(img, options.note, {options.width / 2, static_cast<int>(40 * scale / 0.45)}, scale, kMarkerColor, 0);
   }
   text(img, options.x_label, {axes.area.x + axes.area.width / 2, options.height - 8}, scale, kInk, 0);
-  if (!options.y_label.empty()) {
-    // Vertical y label: draw horizontally, then rotate into the left margin.
-    int base = 0;
-    const cv::Size size = cv::getTextSize(options.y_label, kFont, scale, 1, &base);
-    cv::Mat label(size.height + base + 4, size.width + 4, CV_8UC3, cv::Scalar(255, 255, 255));
-    cv::putText(label, options.y_label, {2, size.height + 2}, kFont, scale, kInk, 1, cv::LINE_AA);
-    cv::rotate(label, label, cv::ROTATE_90_COUNTERCLOCKWISE);
-    const int x0 = 2, y0 = std::max(0, axes.area.y + axes.area.height / 2 - label.rows / 2);
-    if (label.rows + y0 <= img.rows && label.cols + x0 <= img.cols) label.copyTo(img(cv::Rect(x0, y0, label.cols, label.rows)));
-  }
+  if (!options.y_label.empty()) drawYLabel(img, axes, options.y_label, scale);
+}
 
-  // Data: lines between consecutive finite samples; a NaN breaks the line and is marked as a
-  // cross below the plot area.
+// Data: lines between consecutive finite samples; a NaN breaks the line and is marked as a
+// cross below the plot area. Then the marked x (dashed) and point. True when a value was missing.
+bool drawData(cv::Mat& img, const Axes& axes, const std::vector<Series>& series, const Options& options) {
   cv::Mat plot_area = img(axes.area);
   Axes local = axes;
   local.area = cv::Rect(0, 0, axes.area.width, axes.area.height);
@@ -159,8 +167,13 @@ cv::Mat plotSeries(const std::vector<Series>& series, const Options& options, Ax
                  cv::LINE_AA, shift);
     }
   }
+  return any_missing;
+}
 
-  // Legend, top right inside the plot area.
+// Legend, top right inside the plot area.
+void drawLegend(cv::Mat& img, const Axes& axes, const std::vector<Series>& series, const Options& options,
+                bool any_missing) {
+  const double scale = fontScale(options);
   std::vector<std::pair<std::string, cv::Scalar>> legend;
   for (const auto& s : series) {
     if (!s.label.empty()) legend.emplace_back(s.label, s.color);
@@ -172,6 +185,20 @@ cv::Mat plotSeries(const std::vector<Series>& series, const Options& options, Ax
     text(img, label, {axes.area.br().x - 8, ly}, scale, color, 1);
     ly += static_cast<int>(18 * scale / 0.45);
   }
+}
+
+}  // namespace
+
+cv::Mat plotSeries(const std::vector<Series>& series, const Options& options, Axes* axes_out) {
+  if (options.width < 160 || options.height < 120) {
+    throw std::invalid_argument("plot size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                                " is below 160x120");
+  }
+  const Axes axes = axesFor(series, options);
+  cv::Mat img(options.height, options.width, CV_8UC3, cv::Scalar(255, 255, 255));
+  drawFrame(img, axes, options);
+  const bool any_missing = drawData(img, axes, series, options);
+  drawLegend(img, axes, series, options, any_missing);
   if (axes_out) *axes_out = axes;
   return img;
 }

@@ -78,6 +78,16 @@ class JointGroupServer {
   // *code set. Fills the trajectory, tolerances and start offset.
   std::string acceptTrajectoryLocked(const control_msgs::FollowJointTrajectoryGoal& goal,
                                      const std::vector<int>& index, int* code);
+  // Its steps: the goal's points as waypoints over all joints (those it leaves out hold still);
+  // a joint the spline would move too fast; the tolerances (goal's, else the controller's); the
+  // faults the simulator was asked for (a joint sticking, one settling off its goal). The first
+  // two return "" or why the goal is refused.
+  std::string waypointsLocked(const control_msgs::FollowJointTrajectoryGoal& goal, const std::vector<int>& index,
+                              std::vector<Waypoint>* waypoints) const;
+  std::string velocityViolation(const SplineTrajectory& spline) const;
+  void tolerancesOf(const control_msgs::FollowJointTrajectoryGoal& goal, std::vector<double>* path,
+                    std::vector<double>* at_goal) const;
+  void planFaultsLocked();
   void stepTrajectoryLocked(double sim_dt);
   void endTrajectoryLocked(int code, const std::string& text);
   double param(const std::string& name, double fallback) const;

@@ -136,6 +136,11 @@ class Block {
   const PortSpec* findInput(const std::string& name) const;
   const PortSpec* findOutput(const std::string& name) const;
   const PropertySpec* findProperty(const std::string& name) const;
+  // The declaration of `name`; throws PropertyError "unknown property 'x' (known: a, b)".
+  const PropertySpec& propertySpec(const std::string& name) const;
+  // A written value for `name` (PropertySpec::parse); throws PropertyError "unknown property 'x'
+  // (known: a, b)" or "property 'x': <why>".
+  PropertyValue parseProperty(const std::string& name, const std::string& text, const std::string& base_dir = "") const;
   int inputIndex(const std::string& name) const;   // -1 if none
   int outputIndex(const std::string& name) const;  // -1 if none
 
@@ -191,5 +196,14 @@ class Block {
   std::shared_ptr<const PropertyValues> values_ = std::make_shared<const PropertyValues>();
   const BlockInfo* info_ = nullptr;
 };
+
+// Same ports (names, types, optional) in the same order: the links of a net, or the topics of a
+// nodelet, made for one still fit the other.
+bool samePorts(const Block& a, const Block& b);
+// Reconfiguring a block whose properties change: `fresh`, a new instance of `current`'s type, takes
+// `current`'s property values with `changes` over them and is configured, so what configure() reads
+// (a sub-net's net, a marker file, ports) takes effect too. Throws PropertyError naming the
+// property, or what configure() throws; `current` is left as it was.
+void configureLike(Block& fresh, const Block& current, const PropertyValues& changes);
 
 }  // namespace imagenets

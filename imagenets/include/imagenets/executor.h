@@ -26,6 +26,7 @@
 
 namespace imagenets {
 
+class FeedbackSearch;
 class ThreadPool;
 
 struct RunReport {
@@ -73,9 +74,21 @@ class Executor {
     setInput(block_port, PortType::of<M>().wrap(msg));
   }
 
-  // Changes a property (validated; throws PropertyError / NetError naming it); marks the block
-  // out of date so the next run re-executes it and its downstream.
+  // What setProperties did.
+  enum class PropertyChange {
+    Applied,       // the block has the new values (configured anew), out of date
+    NeedsRebuild,  // the values change the block's ports: nothing changed; build the net anew
+  };
+  // Sets several properties of one block at once, all or none. A changed value gives a new instance
+  // of the block, configured with the new values, so what configure() reads (a sub-net's net, a
+  // marker file) takes effect as at load; its ports must stay, since links are wired to them. Marks
+  // the block out of date so the next run re-executes it and its downstream. Throws NetError
+  // "<origin>: block 'b': <why>" (no such block, unknown property, invalid value, refused by
+  // configure()), changing nothing.
+  PropertyChange setProperties(const std::string& block, const PropertyValues& values);
+  // One property; NetError too when the value would change the block's ports.
   void setProperty(const std::string& block, const std::string& property, const PropertyValue& value);
+  // A written value ("72", "[1, 2]"; relative paths against the working directory).
   void setPropertyText(const std::string& block, const std::string& property, const std::string& text);
   // Marks a block out of date without changing it (e.g. the net inside a sub-net block changed):
   // the next run re-executes it and its downstream. Throws NetError for an unknown block.
@@ -116,6 +129,13 @@ class Executor {
   Schedule plan(const std::vector<int>& nodes, bool trial) const;
 
   void markOutOfDate(int node);
+  int nodeIndex(const std::string& block) const;  // NetError "<origin>: no block named 'x'"
+  // The node's block configured anew with `changes` (NetError naming it when refused).
+  std::unique_ptr<Block> reconfigured(int node, const PropertyValues& changes) const;
+  // Starts a public run: clears the cancel flag and the cancelled blocks of the last run.
+  void beginRun();
+  // The report's `cancelled`: a block of this run was cancelled.
+  bool anyUnfinished() const;
   RunReport runOutOfDate();
   // Runs the schedule's units in event flow against `store`: a unit starts when the units that
   // feed it are done; independent units run in parallel. Nodes outside the set keep their outputs.
@@ -126,6 +146,13 @@ class Executor {
   // Feedback (paper 3.4): sweeps the node's property over its candidates, each trial running the
   // region between the node and its score; keeps the best trial's outputs in `store`.
   void runFeedback(int node, Store& store, RunReport& report);
+  // The steps of runFeedback: the region skipped for a missing input; the trials (returns the best
+  // trial's store); one trial's event; the trace output; the best trial's outputs kept (or none).
+  void skipFeedbackRegion(int node, const std::string& missing, Store& store, RunReport& report);
+  Store sweep(int node, FeedbackSearch& search, const Store& store);
+  void emitTrial(int node, const FeedbackSearch& search);
+  Value feedbackTrace(int node, const FeedbackSearch& search) const;
+  void keepBestTrial(int node, const FeedbackSearch& search, Store best_store, Store& store, RunReport& report);
   double runTrial(int node, double candidate, const Store& base, Store& trial_store);
   std::vector<double> initialCandidates(int node, const Store& store) const;
   // Runs task(0..count-1) on the pool (the calling thread helps) and returns when all are done.

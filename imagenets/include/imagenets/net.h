@@ -72,6 +72,14 @@ struct BlockSpec {
   std::vector<PropertySetting> properties;
   std::optional<FeedbackSpec> feedback;
   SourceLocation loc;
+
+  // The setting of a property as written, or null when the block takes the default.
+  const PropertySetting* findSetting(const std::string& property) const;
+  // Sets a property as if written in the net file (text as there: "72", "[1, 2]", a path); a new
+  // setting takes the block's location. Checked when the net is built.
+  void setProperty(const std::string& property, const std::string& text);
+  // Drops the setting (the property takes its default); false when there was none.
+  bool removeProperty(const std::string& property);
 };
 
 struct LinkSpec {
@@ -85,6 +93,16 @@ struct NetSpec {
   std::vector<std::string> include_chain;  // files including this one (sub-nets), outermost first
   std::vector<BlockSpec> blocks;
   std::vector<LinkSpec> links;
+
+  // The block of that name, or null.
+  BlockSpec* findBlock(const std::string& name);
+  const BlockSpec* findBlock(const std::string& name) const;
+  // The block of that name; throws NetError "<origin>: no block named 'x'".
+  BlockSpec& block(const std::string& name);
+  const BlockSpec& block(const std::string& name) const;
+  // Removes a block with what refers to it: its links, a feedback scored by it, feedback initial
+  // values taken from it. False when there is no such block.
+  bool removeBlock(const std::string& name);
 };
 
 // Parse only (no blocks created). Throw NetError for unreadable or malformed input.
@@ -131,6 +149,7 @@ class Net {
 
   const std::string& origin() const { return origin_; }
   const std::string& baseDir() const { return base_dir_; }
+  const std::vector<std::string>& includeChain() const { return include_chain_; }
   const std::vector<Node>& nodes() const { return nodes_; }
   Node& node(int i) { return nodes_[i]; }
   const Node& node(int i) const { return nodes_[i]; }
@@ -145,6 +164,7 @@ class Net {
  private:
   friend class NetBuilder;  // the steps of build() fill the net
   std::string origin_, base_dir_;
+  std::vector<std::string> include_chain_;
   std::vector<Node> nodes_;
   std::vector<int> order_;
 };

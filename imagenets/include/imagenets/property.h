@@ -64,6 +64,14 @@ class PropertySpec {
   bool fixed_at_load_ = false;
 };
 
+// The property `name` among `specs`; throws PropertyError "unknown property 'x' (known: a, b)".
+const PropertySpec& findPropertySpec(const std::vector<const PropertySpec*>& specs, const std::string& name);
+// A written value for the property `name` among `specs` (PropertySpec::parse). Throws PropertyError
+// "unknown property 'x' (known: a, b)" or "property 'x': <why>"; the caller adds where (file:line
+// and block, ROS parameter, ...).
+PropertyValue parseNamedProperty(const std::vector<const PropertySpec*>& specs, const std::string& name,
+                                 const std::string& text, const std::string& base_dir = "");
+
 // Resolves `$(find pkg)` and relative paths (against base_dir); throws PropertyError.
 std::string resolvePath(const std::string& path, const std::string& base_dir);
 

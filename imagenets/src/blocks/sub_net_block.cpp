@@ -53,55 +53,76 @@ SubNetBlock::SubNetBlock() {
 
 SubNetBlock::~SubNetBlock() = default;
 
+namespace {
+
+// The nets including the one being built, outermost first, and that one: a sub-net may not be
+// among them.
+std::vector<std::string> includeChain() {
+  const NetSpec* outer = LoadContext::current();
+  std::vector<std::string> chain = outer ? outer->include_chain : std::vector<std::string>{};
+  if (outer) chain.push_back(outer->origin);
+  return chain;
+}
+
+NetSpec parseIncluded(const std::string& path, const std::vector<std::string>& chain) {
+  for (const auto& including : chain) {
+    if (canonical(including) != canonical(path)) continue;
+    std::string loop;
+    for (const auto& c : chain) loop += c + " -> ";
+    throw BlockError("net '" + path + "' includes itself: " + loop + path);
+  }
+  NetSpec included = parseNetFile(path);
+  included.include_chain = chain;
+  return included;
+}
+
+// The outer name of a port block of an inner net: its `port`, else its block name.
+std::string outerName(const Net::Node& node, const NetPort& boundary) {
+  return boundary.outerName().empty() ? node.name : boundary.outerName();
+}
+
+}  // namespace
+
 void SubNetBlock::configure() {
   const std::string file = property<std::string>("net");
   const std::string yaml = property<std::string>("net_yaml");
   if (file.empty() == yaml.empty()) throw BlockError("set exactly one of the properties 'net' (a file) and 'net_yaml'");
-
-  const NetSpec* outer = LoadContext::current();
-  std::vector<std::string> chain = outer ? outer->include_chain : std::vector<std::string>{};
-  if (outer) chain.push_back(outer->origin);
-  auto parseIncluded = [&](const std::string& path) {
-    for (const auto& including : chain) {
-      if (canonical(including) != canonical(path)) continue;
-      std::string loop;
-      for (const auto& c : chain) loop += c + " -> ";
-      throw BlockError("net '" + path + "' includes itself: " + loop + path);
-    }
-    NetSpec included = parseNetFile(path);
-    included.include_chain = chain;
-    return included;
-  };
+  const std::vector<std::string> chain = includeChain();
   NetSpec spec;
   if (!file.empty()) {
-    spec = parseIncluded(file);
+    spec = parseIncluded(file, chain);
   } else {
+    const NetSpec* outer = LoadContext::current();
     spec = parseNetText(yaml, (outer ? outer->origin : std::string("net")) + " (net_yaml)",
                         outer ? outer->base_dir : std::string());
   }
   spec.include_chain = chain;
   executor_ = std::make_unique<Executor>(Net::build(spec), ExecutorOptions{property<int>("threads")});
-
-  const std::string repetition_port = property<std::string>("repetition_input");
-  repetition_input_.clear();
   if (property<bool>("repeat_from_input")) {
     addInput<std_msgs::Int32>("repeat", "number of repetitions of this run (>= 1; instead of the property `repeat`)");
   }
+  declarePorts(spec.origin);
+  if (property<int>("max_failures") > 0) {
+    addOutput<std_msgs::String>("failure", "why the first failed repetition failed; only when one failed");
+  }
+  configureUntil(chain);
+}
+
+void SubNetBlock::declarePorts(const std::string& origin) {
+  const std::string repetition_port = property<std::string>("repetition_input");
+  repetition_input_.clear();
   for (const auto& node : executor_->net().nodes()) {
     const auto* boundary = dynamic_cast<const NetPort*>(node.block.get());
     if (!boundary) continue;
-    std::string port = boundary->outerName();
-    if (port.empty()) port = node.name;
+    const std::string port = outerName(node, *boundary);
     const PortType& type = boundary->type();
     if (boundary->direction() == NetPort::Direction::In && port == repetition_port) {
       if (type.name != PortType::of<std_msgs::Int32>().name) {
-        throw BlockError("property 'repetition_input': port '" + port + "' of " + spec.origin + " is " + type.name +
+        throw BlockError("property 'repetition_input': port '" + port + "' of " + origin + " is " + type.name +
                          ", expected std_msgs/Int32");
       }
       repetition_input_ = node.name + ".value";
-      continue;
-    }
-    if (boundary->direction() == NetPort::Direction::In) {
+    } else if (boundary->direction() == NetPort::Direction::In) {
       addInput(port, type, "sub-net input '" + node.name + "'").optional = boundary->optional();
       inputs_.push_back({port, node.name + ".value"});
     } else {
@@ -112,19 +133,18 @@ void SubNetBlock::configure() {
     }
   }
   if (!repetition_port.empty() && repetition_input_.empty()) {
-    throw BlockError("property 'repetition_input': " + spec.origin + " has no input port '" + repetition_port +
+    throw BlockError("property 'repetition_input': " + origin + " has no input port '" + repetition_port +
                      "' (an imagenets/SubNetInput with port '" + repetition_port + "', type std_msgs/Int32)");
   }
-  if (property<int>("max_failures") > 0) {
-    addOutput<std_msgs::String>("failure", "why the first failed repetition failed; only when one failed");
-  }
+}
 
+void SubNetBlock::configureUntil(const std::vector<std::string>& chain) {
   // Repeat until: the until net's ports are matched by name against this block's ports.
   until_.reset();
   until_inputs_.clear();
   const std::string until_file = property<std::string>("until_net");
   if (until_file.empty()) return;
-  const NetSpec until_spec = parseIncluded(until_file);
+  const NetSpec until_spec = parseIncluded(until_file, chain);
   until_ = std::make_unique<Executor>(Net::build(until_spec), ExecutorOptions{property<int>("threads")});
   if (property<bool>("repeat_from_input")) {
     addOptionalInput<std_msgs::Int32>("max_repeat", "at most this many repetitions (instead of the property)");
@@ -133,44 +153,47 @@ void SubNetBlock::configure() {
   for (const auto& node : until_->net().nodes()) {
     const auto* boundary = dynamic_cast<const NetPort*>(node.block.get());
     if (!boundary) continue;
-    std::string port = boundary->outerName();
-    if (port.empty()) port = node.name;
+    const std::string port = outerName(node, *boundary);
     const PortType& type = boundary->type();
-    if (boundary->direction() == NetPort::Direction::Out) {
-      if (port != "done") continue;
+    if (boundary->direction() == NetPort::Direction::In) {
+      until_inputs_.push_back(untilInput(node.name, port, type, until_spec.origin));
+    } else if (port == "done") {
       if (type.name != PortType::of<std_msgs::Bool>().name) {
         throw BlockError("property 'until_net': output 'done' of " + until_spec.origin + " is " + type.name +
                          ", expected std_msgs/Bool");
       }
       until_done_ = node.name + ".value";
-      continue;
     }
-    UntilInPort in{node.name + ".value"};
-    std::string offered;
-    for (size_t i = 0; i < inputs_.size(); ++i) {
-      if (inputs_[i].port == port) in.input = static_cast<int>(i);
-      offered += (offered.empty() ? "" : ", ") + inputs_[i].port;
-    }
-    for (size_t o = 0; o < outputs_.size(); ++o) {
-      if (!outputs_[o].collector) continue;
-      if (outputs_[o].port + "_all" == port) in.output = static_cast<int>(o);
-      offered += (offered.empty() ? "" : ", ") + outputs_[o].port + "_all";
-    }
-    if (in.input < 0 && in.output < 0) {
-      throw BlockError("property 'until_net': input '" + port + "' of " + until_spec.origin +
-                       " is neither an input of this block nor a collection of its outputs (have: " + offered + ")");
-    }
-    const PortType& fed = in.input >= 0 ? *findInput(port)->type : *outputs_[in.output].collector->collection;
-    if (fed.name != type.name) {
-      throw BlockError("property 'until_net': input '" + port + "' of " + until_spec.origin + " is " + type.name +
-                       ", but this block's '" + port + "' is " + fed.name);
-    }
-    until_inputs_.push_back(in);
   }
   if (until_done_.empty()) {
     throw BlockError("property 'until_net': " + until_spec.origin +
                      " has no output 'done' (an imagenets/SubNetOutput with port 'done', type std_msgs/Bool)");
   }
+}
+
+SubNetBlock::UntilInPort SubNetBlock::untilInput(const std::string& block, const std::string& port,
+                                                 const PortType& type, const std::string& origin) const {
+  UntilInPort in{block + ".value"};
+  std::string offered;
+  for (size_t i = 0; i < inputs_.size(); ++i) {
+    if (inputs_[i].port == port) in.input = static_cast<int>(i);
+    offered += (offered.empty() ? "" : ", ") + inputs_[i].port;
+  }
+  for (size_t o = 0; o < outputs_.size(); ++o) {
+    if (!outputs_[o].collector) continue;
+    if (outputs_[o].port + "_all" == port) in.output = static_cast<int>(o);
+    offered += (offered.empty() ? "" : ", ") + outputs_[o].port + "_all";
+  }
+  if (in.input < 0 && in.output < 0) {
+    throw BlockError("property 'until_net': input '" + port + "' of " + origin +
+                     " is neither an input of this block nor a collection of its outputs (have: " + offered + ")");
+  }
+  const PortType& fed = in.input >= 0 ? *findInput(port)->type : *outputs_[in.output].collector->collection;
+  if (fed.name != type.name) {
+    throw BlockError("property 'until_net': input '" + port + "' of " + origin + " is " + type.name +
+                     ", but this block's '" + port + "' is " + fed.name);
+  }
+  return in;
 }
 
 bool SubNetBlock::untilDone(const std::vector<std::vector<Value>>& results, const std::vector<Value>& inputs,
@@ -197,6 +220,73 @@ bool SubNetBlock::untilDone(const std::vector<std::vector<Value>>& results, cons
   return done && done->data;
 }
 
+int SubNetBlock::repetitions(Context& ctx) const {
+  if (!ctx.property<bool>("repeat_from_input")) return ctx.property<int>("repeat");
+  const int repeat = ctx.input<std_msgs::Int32>("repeat")->data;
+  if (repeat < 1) throw BlockError("input 'repeat': " + std::to_string(repeat) + " repetitions (must be >= 1)");
+  return repeat;
+}
+
+int SubNetBlock::maxRepetitions(Context& ctx, int repeat) const {
+  // Repeat until: past the N repetitions, one more at a time while the until net is not done.
+  if (!until_) return repeat;
+  const auto from_input = ctx.property<bool>("repeat_from_input") ? ctx.input<std_msgs::Int32>("max_repeat") : nullptr;
+  const int limit = from_input ? from_input->data : ctx.property<int>("max_repeat");
+  const int max_repeat = limit != 0 || from_input ? limit : repeat;
+  if (max_repeat < repeat) {
+    throw BlockError(std::string(from_input ? "input" : "property") + " 'max_repeat': " + std::to_string(max_repeat) +
+                     " is below the " + std::to_string(repeat) + " repetitions that run anyway");
+  }
+  return max_repeat;
+}
+
+bool SubNetBlock::repeatOnce(int i, int repeat, int max_repeat, Context& ctx, const std::vector<Value>& inputs,
+                             Repetitions& r) {
+  if (ctx.cancelled()) throw RunCancelled();
+  if (!repetition_input_.empty()) {
+    auto index = boost::make_shared<std_msgs::Int32>();
+    index->data = i;
+    executor_->setInput(repetition_input_, PortType::of<std_msgs::Int32>().wrap<std_msgs::Int32>(index));
+  }
+  // Every repetition re-runs the whole sub-net (sources included: a fresh image, a new move).
+  RunReport report = max_repeat == 1 ? executor_->run() : executor_->runAll();
+  if (report.cancelled) throw RunCancelled();
+  ++r.ran;
+  RunEvent done;
+  done.kind = RunEventKind::Repetition;
+  done.index = i + 1;
+  done.count = max_repeat;
+  done.stats.status = report.failed.empty() ? BlockStatus::Ok : BlockStatus::Failed;
+  if (!report.failed.empty()) {
+    done.stats.message = report.failed.front();
+    done.message = "failed: " + report.failed.front();
+    // Its outputs may still hold the previous repetition's values: none of them is taken.
+    if (++r.failures == 1) {
+      r.first_failure = "repetition " + std::to_string(i + 1) + ": " + report.failed.front();
+      r.first_failure_message = report.failed.front();
+    }
+  } else {
+    for (size_t o = 0; o < outputs_.size(); ++o) {
+      Value v = executor_->output(outputs_[o].inner);
+      if (v) r.results[o].push_back(v);
+    }
+  }
+  // The until net decides from repetition N on whether more are needed (not when none may follow).
+  bool enough = i + 1 >= repeat;
+  if (enough && i + 1 < max_repeat) {
+    Nesting until_nesting(*until_, RunChannel{[&ctx](RunEvent e) {
+                                                e.block = "until/" + e.block;
+                                                ctx.emit(e);
+                                              },
+                                              [&ctx] { return ctx.cancelled(); }});
+    std::string verdict;
+    enough = untilDone(r.results, inputs, &verdict);
+    done.message += (done.message.empty() ? "" : "; ") + verdict;
+  }
+  ctx.emit(done);
+  return enough;
+}
+
 void SubNetBlock::process(Context& ctx) {
   if (!executor_) throw BlockError("no sub-net loaded");
   // One sub-net instance: concurrent calls (feedback trials) take turns.
@@ -205,89 +295,34 @@ void SubNetBlock::process(Context& ctx) {
   std::vector<Value> input_values;  // also what the until net is fed
   for (const auto& in : inputs_) input_values.push_back(ctx.inputValue(in.port));
   for (size_t i = 0; i < inputs_.size(); ++i) executor_->setInput(inputs_[i].inner, input_values[i]);
-  int repeat = ctx.property<int>("repeat");
-  if (ctx.property<bool>("repeat_from_input")) {
-    repeat = ctx.input<std_msgs::Int32>("repeat")->data;
-    if (repeat < 1) throw BlockError("input 'repeat': " + std::to_string(repeat) + " repetitions (must be >= 1)");
-  }
-  // Repeat until: past the N repetitions, one more at a time while the until net is not done.
-  int max_repeat = repeat;
-  if (until_) {
-    const auto from_input = ctx.property<bool>("repeat_from_input") ? ctx.input<std_msgs::Int32>("max_repeat") : nullptr;
-    const int limit = from_input ? from_input->data : ctx.property<int>("max_repeat");
-    if (limit != 0 || from_input) max_repeat = limit;
-    if (max_repeat < repeat) {
-      throw BlockError(std::string(from_input ? "input" : "property") + " 'max_repeat': " + std::to_string(max_repeat) +
-                       " is below the " + std::to_string(repeat) + " repetitions that run anyway");
-    }
-  }
-  std::vector<std::vector<Value>> results(outputs_.size());
-  std::string first_failure_message;
-  std::string first_failure;
-  int failures = 0;
-  int ran = 0;
+  const int repeat = repetitions(ctx);
+  const int max_repeat = maxRepetitions(ctx, repeat);
+  Repetitions r;
+  r.results.resize(outputs_.size());
   for (int i = 0; i < max_repeat; ++i) {
-    if (ctx.cancelled()) throw RunCancelled();
-    if (!repetition_input_.empty()) {
-      auto index = boost::make_shared<std_msgs::Int32>();
-      index->data = i;
-      executor_->setInput(repetition_input_, PortType::of<std_msgs::Int32>().wrap<std_msgs::Int32>(index));
-    }
-    // Every repetition re-runs the whole sub-net (sources included: a fresh image, a new move).
-    RunReport report = max_repeat == 1 ? executor_->run() : executor_->runAll();
-    if (report.cancelled) throw RunCancelled();
-    ++ran;
-    RunEvent done;
-    done.kind = RunEventKind::Repetition;
-    done.index = i + 1;
-    done.count = max_repeat;
-    done.stats.status = report.failed.empty() ? BlockStatus::Ok : BlockStatus::Failed;
-    if (!report.failed.empty()) {
-      done.stats.message = report.failed.front();
-      done.message = "failed: " + report.failed.front();
-      // Its outputs may still hold the previous repetition's values: none of them is taken.
-      if (++failures == 1) {
-        first_failure = "repetition " + std::to_string(i + 1) + ": " + report.failed.front();
-        first_failure_message = report.failed.front();
-      }
-    } else {
-      for (size_t o = 0; o < outputs_.size(); ++o) {
-        Value v = executor_->output(outputs_[o].inner);
-        if (v) results[o].push_back(v);
-      }
-    }
-    // The until net decides from repetition N on whether more are needed (not when none may follow).
-    bool enough = i + 1 >= repeat;
-    if (enough && i + 1 < max_repeat) {
-      Nesting until_nesting(*until_, RunChannel{[&ctx](RunEvent e) {
-                                                  e.block = "until/" + e.block;
-                                                  ctx.emit(e);
-                                                },
-                                                [&ctx] { return ctx.cancelled(); }});
-      std::string verdict;
-      enough = untilDone(results, input_values, &verdict);
-      done.message += (done.message.empty() ? "" : "; ") + verdict;
-    }
-    ctx.emit(done);
-    if (enough) break;
+    if (repeatOnce(i, repeat, max_repeat, ctx, input_values, r)) break;
   }
+  setOutputs(ctx, r);
+}
+
+void SubNetBlock::setOutputs(Context& ctx, const Repetitions& r) const {
   // With max_failures >= the repetitions, even all of them failing leaves the block ok: it then
   // hands out only `failure` (e.g. a detection sub-net whose "not found" is a result downstream).
   const int max_failures = ctx.property<int>("max_failures");
-  if (failures > max_failures || (failures == ran && max_failures < ran)) {
-    throw BlockError("sub-net " + executor_->net().origin() + ": " + std::to_string(failures) + " of " +
-                     std::to_string(ran) + " repetitions failed (max_failures " +
-                     std::to_string(ctx.property<int>("max_failures")) + "); " + first_failure);
+  if (r.failures > max_failures || (r.failures == r.ran && max_failures < r.ran)) {
+    throw BlockError("sub-net " + executor_->net().origin() + ": " + std::to_string(r.failures) + " of " +
+                     std::to_string(r.ran) + " repetitions failed (max_failures " + std::to_string(max_failures) +
+                     "); " + r.first_failure);
   }
-  if (failures > 0) {
+  if (r.failures > 0) {
     auto why = boost::make_shared<std_msgs::String>();
-    why->data = first_failure_message;
+    why->data = r.first_failure_message;
     ctx.output("failure", why);
   }
   for (size_t o = 0; o < outputs_.size(); ++o) {
-    if (results[o].empty()) continue;
-    ctx.setOutput(outputs_[o].port, results[o].back());
-    if (outputs_[o].collector) ctx.setOutput(outputs_[o].port + "_all", outputs_[o].collector->collect(results[o]));
+    if (r.results[o].empty()) continue;
+    ctx.setOutput(outputs_[o].port, r.results[o].back());
+    if (outputs_[o].collector) ctx.setOutput(outputs_[o].port + "_all", outputs_[o].collector->collect(r.results[o]));
   }
 }
 

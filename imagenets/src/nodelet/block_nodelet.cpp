@@ -143,15 +143,12 @@ class BlockHost {
       host_->set(name, value);
     }
   }
-  const PropertySpec* findSpec(const std::string& name) const {
-    if (const PropertySpec* s = block_->findProperty(name)) return s;
-    return host_->find(name);
-  }
-  std::string knownNames() const {
-    std::string known;
-    for (const auto& s : block_->propertySpecs()) known += (known.empty() ? "" : ", ") + s.name();
-    for (const auto& s : host_->specs()) known += (known.empty() ? "" : ", ") + s.name();
-    return known;
+  // The block's properties, then the host's (a block's name hides the host's).
+  std::vector<const PropertySpec*> blockAndHostSpecs() const {
+    std::vector<const PropertySpec*> specs;
+    for (const PropertySpec& s : block_->propertySpecs()) specs.push_back(&s);
+    for (const PropertySpec& s : host_->specs()) specs.push_back(&s);
+    return specs;
   }
 
   // Every ~private parameter must name a property and hold a valid value for it.
@@ -166,20 +163,15 @@ class BlockHost {
       std::string rest = full.substr(prefix.size());
       names.insert(rest.substr(0, rest.find('/')));
     }
+    const std::vector<const PropertySpec*> specs = blockAndHostSpecs();
     for (const std::string& name : names) {
-      const PropertySpec* spec = findSpec(name);
-      if (!spec) {
-        errors.push_back("parameter '" + prefix + name + "': unknown property '" + name + "' (known: " +
-                         knownNames() + ")");
-        continue;
-      }
       XmlRpc::XmlRpcValue raw;
       if (!pnh_.getParam(name, raw)) continue;
       try {
         // Relative paths resolve against the working directory; `$(find pkg)/...` works too.
-        setValue(name, spec->parse(paramText(raw)));
+        setValue(name, parseNamedProperty(specs, name, paramText(raw)));
       } catch (const std::exception& e) {
-        errors.push_back("parameter '" + prefix + name + "': property '" + name + "': " + e.what());
+        errors.push_back("parameter '" + prefix + name + "': " + e.what());
       }
     }
     return errors;
@@ -297,23 +289,19 @@ class BlockHost {
     std::lock_guard<std::mutex> lock(mutex_);
     PropertyValues block_changes, host_changes;
     const PropertyValues before = currentValues();
+    const std::vector<const PropertySpec*> specs = blockAndHostSpecs();
     for (const auto& [name, text] : decodeRequest(req.config)) {
-      const PropertySpec* spec = findSpec(name);
-      if (!spec) {
-        ROS_ERROR_STREAM(describe() << ": set_parameters: unknown property '" << name << "' (known: " << knownNames()
-                                    << ")");
-        continue;
-      }
       try {
-        PropertyValue v = spec->parse(text);
+        PropertyValue v = parseNamedProperty(specs, name, text);
         auto old = before.find(name);
         if (old != before.end() && old->second == v) continue;
-        if (spec->isFixedAtLoad()) {
-          throw PropertyError("takes effect at load only (the topics are open); reload the nodelet to change it");
+        if (findPropertySpec(specs, name).isFixedAtLoad()) {
+          throw PropertyError("property '" + name + "': takes effect at load only (the topics are open); reload the "
+                              "nodelet to change it");
         }
         (block_->findProperty(name) ? block_changes : host_changes)[name] = v;
       } catch (const std::exception& e) {
-        ROS_ERROR_STREAM(describe() << ": set_parameters: property '" << name << "': " << e.what());
+        ROS_ERROR_STREAM(describe() << ": set_parameters: " << e.what());
       }
     }
     if (!block_changes.empty() && !reconfigureBlock(block_changes)) block_changes.clear();
@@ -337,25 +325,13 @@ class BlockHost {
   // block as it was. The ports must stay the same, since topics are already wired.
   bool reconfigureBlock(const PropertyValues& changes) {
     std::unique_ptr<Block> fresh = factory_();
-    fresh->setInfo(block_->info());
     try {
-      for (const auto& [name, v] : block_->propertyValues()) {
-        auto changed = changes.find(name);
-        fresh->setProperty(name, changed != changes.end() ? changed->second : v);
-      }
-      fresh->configure();
+      configureLike(*fresh, *block_, changes);
     } catch (const std::exception& e) {
       ROS_ERROR_STREAM(describe() << ": set_parameters: change refused: " << e.what());
       return false;
     }
-    auto samePorts = [](const std::vector<PortSpec>& a, const std::vector<PortSpec>& b) {
-      if (a.size() != b.size()) return false;
-      for (size_t i = 0; i < a.size(); ++i) {
-        if (a[i].name != b[i].name || a[i].type != b[i].type || a[i].optional != b[i].optional) return false;
-      }
-      return true;
-    };
-    if (!samePorts(fresh->inputs(), block_->inputs()) || !samePorts(fresh->outputs(), block_->outputs())) {
+    if (!samePorts(*fresh, *block_)) {
       ROS_ERROR_STREAM(describe() << ": set_parameters: change refused: it changes the block's ports; reload the "
                                      "nodelet with the new parameters instead");
       return false;

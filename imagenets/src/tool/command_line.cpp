@@ -1,7 +1,5 @@
 #include <algorithm>
 #include <cerrno>
-#include <climits>
-#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -22,35 +20,81 @@ std::vector<Command>& commands() {
   return all;
 }
 
-std::string flagValue(const Args& args, size_t& i) {
-  if (i + 1 >= args.size()) throw UsageError(args[i] + " needs a value");
-  return args[++i];
+Flags::Flags() : flags_("options"), operands_("operands") {}
+
+void Flags::operand(const std::string& name, int count, const std::string& help) {
+  operands_.add_options()(name.c_str(), po::value<std::vector<std::string>>(), help.c_str());
+  positional_.add(name.c_str(), count);
+  operand_names_.emplace_back(name, count);
 }
 
-int intValue(const Args& args, size_t& i) {
-  const std::string& flag = args[i];
-  const std::string v = flagValue(args, i);
-  char* end = nullptr;
-  errno = 0;
-  const long n = std::strtol(v.c_str(), &end, 10);
-  if (v.empty() || *end || errno == ERANGE || n < INT_MIN || n > INT_MAX) {
-    throw UsageError(flag + " '" + v + "' is not an integer");
+namespace {
+
+// What a typed flag expects, for "--n 'many' is not an integer".
+std::string expected(const po::options_description& flags, const std::string& option) {
+  const std::string name = option.substr(option.find_first_not_of('-'));
+  const po::option_description* d = flags.find_nothrow(name, false);
+  const po::value_semantic* s = d ? d->semantic().get() : nullptr;
+  if (dynamic_cast<const po::typed_value<int>*>(s)) return "an integer";
+  if (dynamic_cast<const po::typed_value<double>*>(s)) return "a number";
+  return "valid";
+}
+
+}  // namespace
+
+Options Flags::parse(const Args& given) const {
+  Args args;
+  for (const auto& a : given) {
+    if (!(ros_arguments_ && a.rfind("__", 0) == 0 && a.find(":=") != std::string::npos)) args.push_back(a);
   }
-  return static_cast<int>(n);
+  po::options_description all;
+  all.add(flags_).add(operands_);
+  // Arguments past the last operand: named in the error.
+  all.add_options()("imagenets-extra-operand", po::value<std::vector<std::string>>(), "");
+  po::positional_options_description positional = positional_;
+  if (operand_names_.empty() || operand_names_.back().second >= 0) positional.add("imagenets-extra-operand", -1);
+  Options o;
+  try {
+    po::store(po::command_line_parser(args)
+                  .options(all)
+                  .positional(positional)
+                  .style(po::command_line_style::default_style & ~po::command_line_style::allow_guessing)
+                  .run(),
+              o);
+    po::notify(o);
+  } catch (const po::unknown_option& e) {
+    throw UsageError("unknown option '" + e.get_option_name() + "'");
+  } catch (const po::invalid_option_value& e) {
+    // "the argument ('many') for option '--threads' is invalid"
+    const std::string what = e.what();
+    const auto open = what.find("('"), close = what.find("')");
+    const std::string value = open != std::string::npos && close > open ? what.substr(open + 2, close - open - 2) : "";
+    throw UsageError(e.get_option_name() + " '" + value + "' is not " + expected(flags_, e.get_option_name()));
+  } catch (const po::invalid_command_line_syntax& e) {
+    if (e.kind() == po::invalid_syntax::missing_parameter) throw UsageError(e.get_option_name() + " needs a value");
+    throw UsageError(e.what());
+  } catch (const po::error& e) {
+    throw UsageError(e.what());
+  }
+  if (o.count("imagenets-extra-operand")) {
+    throw UsageError("unexpected argument '" + o["imagenets-extra-operand"].as<std::vector<std::string>>().front() + "'");
+  }
+  return o;
 }
 
-double doubleValue(const Args& args, size_t& i) {
-  const std::string& flag = args[i];
-  const std::string v = flagValue(args, i);
-  char* end = nullptr;
-  const double x = std::strtod(v.c_str(), &end);
-  if (v.empty() || *end || !std::isfinite(x)) throw UsageError(flag + " '" + v + "' is not a number");
-  return x;
+void Flags::printHelp(std::ostream& os) const {
+  if (!flags_.options().empty()) os << "\n" << flags_;
+  if (operand_names_.empty()) return;
+  os << "\noperands:\n";
+  for (const auto& d : operands_.options()) os << "  " << d->long_name() << "  " << d->description() << "\n";
 }
 
-UsageError unknownArgument(const std::string& arg) {
-  if (arg.size() > 1 && arg[0] == '-') return UsageError("unknown option '" + arg + "'");
-  return UsageError("unexpected argument '" + arg + "'");
+std::vector<std::string> strings(const Options& o, const std::string& name) {
+  return o.count(name) ? o[name].as<std::vector<std::string>>() : std::vector<std::string>{};
+}
+
+std::string stringFlag(const Options& o, const std::string& name) {
+  return o.count(name) ? o[name].as<std::string>() : std::string();
 }
 
 namespace {
@@ -129,13 +173,16 @@ void printUsage(std::ostream& os) {
 }
 
 int runCommand(const Command& c, const Args& args) {
+  Flags flags;
+  if (c.declare) c.declare(flags);
   // Help wins over everything else on the line, as in most command line tools.
   if (std::any_of(args.begin(), args.end(), isHelp)) {
     std::cout << "usage: imagenets " << c.usage << "\n\n" << c.summary << "\n";
+    flags.printHelp(std::cout);
     return 0;
   }
   try {
-    return c.run(args);
+    return c.run(flags.parse(args));
   } catch (const UsageError& e) {
     std::cerr << "imagenets " << c.name << ": " << e.what() << "\nusage: imagenets " << c.usage << "\n";
     return 2;

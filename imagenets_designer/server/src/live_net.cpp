@@ -1,9 +1,8 @@
 #include "live_net.h"
 
-#include <map>
+#include <set>
 
 #include "imagenets/net_writer.h"
-#include "imagenets/registry.h"
 #include "net_state_json.h"
 #include "request_error.h"
 
@@ -19,11 +18,17 @@ std::string structureOf(const NetSpec& spec) {
   return bare.base_dir + "\n" + writeNetText(bare);
 }
 
-const std::string* findSetting(const BlockSpec& b, const std::string& property) {
-  for (const auto& p : b.properties) {
-    if (p.name == property) return &p.text;
+// The names of the properties whose settings differ between two versions of one block.
+std::set<std::string> changedSettings(const BlockSpec& before, const BlockSpec& now) {
+  std::set<std::string> names, changed;
+  for (const auto& p : before.properties) names.insert(p.name);
+  for (const auto& p : now.properties) names.insert(p.name);
+  for (const auto& name : names) {
+    const PropertySetting* a = before.findSetting(name);
+    const PropertySetting* b = now.findSetting(name);
+    if ((a == nullptr) != (b == nullptr) || (a && a->text != b->text)) changed.insert(name);
   }
-  return nullptr;
+  return changed;
 }
 
 }  // namespace
@@ -53,93 +58,41 @@ void LiveNet::rebuild(const NetDocument& doc) {
   watches_.newExecutor();
 }
 
-void LiveNet::setProperty(const NetDocument& doc, const std::string& block, const std::string& property,
-                          const std::string* text) {
-  const Block& instance = this->block(block);
-  const PropertySpec* spec = instance.findProperty(property);
-  const std::string where = doc.spec.origin + ": block '" + block + "' (" +
-                            (instance.info() ? instance.info()->type : std::string("?")) + "): ";
-  if (!spec) {
-    std::string known;
-    for (const auto& p : instance.propertySpecs()) known += (known.empty() ? "" : ", ") + p.name();
-    throw NetError({where + "unknown property '" + property + "' (known: " + (known.empty() ? "none" : known) + ")"});
-  }
-  PropertyValue value;
+PropertyValues LiveNet::valuesOf(const NetDocument& doc, const BlockSpec& b, const std::set<std::string>& names) const {
+  const Block& instance = block(b.name);
+  PropertyValues values;
   try {
-    // Relative paths name files beside the net file, as when the net is loaded.
-    value = text ? spec->parse(*text, doc.spec.base_dir) : spec->defaultValue();
-  } catch (const std::exception& e) {
-    throw NetError({where + "property '" + property + "': " + e.what()});
-  }
-  executor_->setProperty(block, property, value);
-}
-
-bool LiveNet::configurationChanged(const NetDocument& previous, const NetDocument& next) const {
-  for (const BlockSpec& b : next.spec.blocks) {
-    const BlockSpec* old = previous.findBlock(b.name);
-    if (!old) return true;
-    auto settings = [](const BlockSpec& spec) {
-      std::map<std::string, std::string> out;
-      for (const auto& p : spec.properties) out[p.name] = p.text;
-      return out;
-    };
-    if (settings(b) == settings(*old)) continue;
-    const int n = net().findNode(b.name);
-    if (n < 0) return true;
-    const Block& instance = *net().node(n).block;
-    // A sub-net is loaded when its block is configured: a new property value needs a new build.
-    if (instance.subNet()) return true;
-    // So does a property that decides the block's ports (e.g. a number of inputs).
-    auto fresh = BlockRegistry::instance().create(b.type);
-    try {
-      for (const auto& p : b.properties) {
-        const PropertySpec* spec = fresh->findProperty(p.name);
-        if (!spec) return false;  // setProperty names it
-        fresh->setProperty(p.name, spec->parse(p.text, next.spec.base_dir));
-      }
-      LoadContext::Scope scope(next.spec);
-      fresh->configure();
-    } catch (const std::exception&) {
-      return true;  // the build reports the engine's own message
+    for (const auto& name : names) {
+      const PropertySetting* setting = b.findSetting(name);
+      // Relative paths name files beside the net file, as when the net is loaded.
+      values[name] = setting ? instance.parseProperty(name, setting->text, doc.spec.base_dir)
+                             : instance.propertySpec(name).defaultValue();
     }
-    auto samePorts = [](const std::vector<PortSpec>& a, const std::vector<PortSpec>& b) {
-      std::vector<std::pair<std::string, const PortType*>> x, y;
-      for (const auto& p : a) {
-        if (p.name != "feedback_trace") x.emplace_back(p.name, p.type);
-      }
-      for (const auto& p : b) {
-        if (p.name != "feedback_trace") y.emplace_back(p.name, p.type);
-      }
-      return x == y;
-    };
-    if (!samePorts(fresh->inputs(), instance.inputs()) || !samePorts(fresh->outputs(), instance.outputs())) return true;
+  } catch (const PropertyError& e) {
+    throw NetError({doc.spec.origin + ": block '" + b.name + "' (" + b.type + "): " + e.what()});
   }
-  return false;
+  return values;
 }
 
 void LiveNet::install(const NetDocument& previous, const NetDocument& next) {
-  if (structureOf(previous.spec) != structureOf(next.spec) || configurationChanged(previous, next)) {
-    rebuild(next);
-    return;
-  }
-  // Only properties (or positions) changed: the executor keeps its cache.
-  std::vector<std::pair<std::string, std::string>> done;
+  if (structureOf(previous.spec) != structureOf(next.spec)) return rebuild(next);
+  // Only properties (or positions) changed: the executor keeps its cache, unless a change alters
+  // a block's ports. What was applied is undone when a later block refuses its values.
+  std::vector<std::pair<std::string, PropertyValues>> undo;
   try {
     for (const BlockSpec& b : next.spec.blocks) {
-      const BlockSpec& old = *previous.findBlock(b.name);
-      std::set<std::string> names;
-      for (const auto& p : b.properties) names.insert(p.name);
-      for (const auto& p : old.properties) names.insert(p.name);
-      for (const auto& name : names) {
-        const std::string* now = findSetting(b, name);
-        const std::string* before = findSetting(old, name);
-        if ((now == nullptr) == (before == nullptr) && (!now || *now == *before)) continue;
-        setProperty(next, b.name, name, now);
-        done.emplace_back(b.name, name);
+      const BlockSpec& old = previous.spec.block(b.name);
+      const std::set<std::string> names = changedSettings(old, b);
+      if (names.empty()) continue;
+      const PropertyValues before = valuesOf(previous, old, names);
+      if (executor_->setProperties(b.name, valuesOf(next, b, names)) == Executor::PropertyChange::NeedsRebuild) {
+        rebuild(next);
+        return;
       }
+      undo.emplace_back(b.name, before);
     }
   } catch (...) {
-    for (const auto& [block, name] : done) setProperty(previous, block, name, findSetting(*previous.findBlock(block), name));
+    for (const auto& [block, values] : undo) executor_->setProperties(block, values);
     throw;
   }
 }

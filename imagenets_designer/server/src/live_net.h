@@ -54,11 +54,9 @@ class LiveNet {
   void sendPortData(const nlohmann::json& header);
 
  private:
-  // Whether `next` changes a block's configuration (its sub-net, its ports) from what is built:
-  // then the net is built anew instead of setting the property.
-  bool configurationChanged(const NetDocument& previous, const NetDocument& next) const;
-  void setProperty(const NetDocument& doc, const std::string& block, const std::string& property,
-                   const std::string* text);
+  // The values of `names` for block `b` of `doc` (a setting's value, else the default); NetError
+  // naming the block and property.
+  PropertyValues valuesOf(const NetDocument& doc, const BlockSpec& b, const std::set<std::string>& names) const;
 
   DesignerOutput& out_;
   int threads_;

@@ -42,7 +42,7 @@ std::string NetDocument::text() const {
   std::string out = unchanged ? source_text_ : written;
   Positions kept;
   for (const auto& kv : positions) {
-    if (findBlock(kv.first)) kept.insert(kv);
+    if (spec.findBlock(kv.first)) kept.insert(kv);
   }
   std::string body;
   if (!kept.empty()) {
@@ -89,17 +89,6 @@ void NetDocument::moveTo(const std::string& origin, const std::string& base_dir)
 void NetDocument::rebase(const std::string& text) {
   source_text_ = text;
   source_written_ = writeNetText(spec);
-}
-
-BlockSpec* NetDocument::findBlock(const std::string& name) {
-  for (auto& b : spec.blocks) {
-    if (b.name == name) return &b;
-  }
-  return nullptr;
-}
-
-const BlockSpec* NetDocument::findBlock(const std::string& name) const {
-  return const_cast<NetDocument*>(this)->findBlock(name);
 }
 
 }  // namespace designer

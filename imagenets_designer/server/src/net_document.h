@@ -37,9 +37,6 @@ class NetDocument {
   // After a save or open: `text` is now the document's source (kept while the net is unchanged).
   void rebase(const std::string& text);
 
-  BlockSpec* findBlock(const std::string& name);
-  const BlockSpec* findBlock(const std::string& name) const;
-
  private:
   std::string source_text_;     // the text loaded ("" for a new net)
   std::string source_written_;  // writeNetText of the spec as loaded: unchanged iff equal

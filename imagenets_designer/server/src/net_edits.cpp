@@ -10,7 +10,7 @@ namespace edits {
 namespace {
 
 BlockSpec& blockIn(NetDocument& doc, const std::string& name) {
-  BlockSpec* b = doc.findBlock(name);
+  BlockSpec* b = doc.spec.findBlock(name);
   if (!b) throw RequestError("no block named '" + name + "'");
   return *b;
 }
@@ -35,10 +35,10 @@ std::string nameFromType(const std::string& type) {
 }
 
 std::string freeName(const NetDocument& doc, const std::string& wanted, const std::set<std::string>& taken) {
-  if (!doc.findBlock(wanted) && !taken.count(wanted)) return wanted;
+  if (!doc.spec.findBlock(wanted) && !taken.count(wanted)) return wanted;
   for (int i = 2;; ++i) {
     const std::string name = wanted + "_" + std::to_string(i);
-    if (!doc.findBlock(name) && !taken.count(name)) return name;
+    if (!doc.spec.findBlock(name) && !taken.count(name)) return name;
   }
 }
 
@@ -51,7 +51,7 @@ std::pair<std::string, std::string> splitEndpoint(const std::string& text, const
 }
 
 const BlockSpec& block(const NetDocument& doc, const std::string& name) {
-  const BlockSpec* b = doc.findBlock(name);
+  const BlockSpec* b = doc.spec.findBlock(name);
   if (!b) throw RequestError("no block named '" + name + "'");
   return *b;
 }
@@ -66,24 +66,8 @@ NetDocument addBlock(const NetDocument& doc, BlockSpec block, const std::optiona
 NetDocument removeBlocks(const NetDocument& doc, const std::set<std::string>& gone) {
   NetDocument next = doc;
   for (const auto& name : gone) blockIn(next, name);
-  auto& blocks = next.spec.blocks;
-  blocks.erase(std::remove_if(blocks.begin(), blocks.end(), [&](const BlockSpec& b) { return gone.count(b.name) > 0; }),
-               blocks.end());
-  auto& links = next.spec.links;
-  links.erase(std::remove_if(links.begin(), links.end(),
-                             [&](const LinkSpec& l) { return gone.count(l.from_block) || gone.count(l.to_block); }),
-              links.end());
-  // A feedback scored by a removed block goes with it, like the links.
-  for (auto& b : blocks) {
-    if (!b.feedback) continue;
-    if (gone.count(b.feedback->score_block)) {
-      b.feedback.reset();
-      continue;
-    }
-    auto& initial = b.feedback->initial;
-    initial.erase(std::remove_if(initial.begin(), initial.end(), [&](const FeedbackInitial& i) { return gone.count(i.block) > 0; }),
-                  initial.end());
-  }
+  // Links, and a feedback scored by a removed block, go with it.
+  for (const auto& name : gone) next.spec.removeBlock(name);
   for (const auto& name : gone) next.positions.erase(name);
   return next;
 }
@@ -122,14 +106,8 @@ NetDocument setProperty(const NetDocument& doc, const std::string& name, const s
                         const std::optional<std::string>& text) {
   NetDocument next = doc;
   BlockSpec& b = blockIn(next, name);
-  auto it = std::find_if(b.properties.begin(), b.properties.end(), [&](const PropertySetting& p) { return p.name == property; });
-  if (!text) {
-    if (it != b.properties.end()) b.properties.erase(it);
-  } else if (it != b.properties.end()) {
-    it->text = *text;
-  } else {
-    b.properties.push_back(PropertySetting{property, *text, SourceLocation{doc.spec.origin, 0}});
-  }
+  if (text) b.setProperty(property, *text);
+  else b.removeProperty(property);
   return next;
 }
 
@@ -142,7 +120,7 @@ NetDocument setFeedback(const NetDocument& doc, const std::string& name, std::op
 NetDocument renameBlock(const NetDocument& doc, const std::string& from, const std::string& to) {
   NetDocument next = doc;
   blockIn(next, from).name = to;
-  if (from != to && doc.findBlock(to)) throw RequestError("a block named '" + to + "' exists already");
+  if (from != to && doc.spec.findBlock(to)) throw RequestError("a block named '" + to + "' exists already");
   for (auto& l : next.spec.links) {
     if (l.from_block == from) l.from_block = to;
     if (l.to_block == from) l.to_block = to;
@@ -205,7 +183,7 @@ Pasted paste(const NetDocument& doc, const std::vector<PastedBlock>& blocks,
 NetDocument setText(const NetDocument& doc, const std::string& text) {
   NetDocument next = NetDocument::fromText(text, doc.spec.origin, doc.spec.base_dir);
   for (const auto& kv : doc.positions) {
-    if (next.findBlock(kv.first) && !next.positions.count(kv.first)) next.positions.insert(kv);
+    if (next.spec.findBlock(kv.first) && !next.positions.count(kv.first)) next.positions.insert(kv);
   }
   return next;
 }

@@ -53,9 +53,9 @@ TEST(NetEdits, AddBlockLeavesTheInputAsItWas) {
   b.type = "imagenets/GaussianBlur";
   const NetDocument after = edits::addBlock(before, b, edits::Position{10, 20});
   EXPECT_EQ(b.name, "gaussian_blur");
-  ASSERT_NE(after.findBlock("gaussian_blur"), nullptr);
+  ASSERT_NE(after.spec.findBlock("gaussian_blur"), nullptr);
   EXPECT_EQ(after.positions.at("gaussian_blur"), (edits::Position{10, 20}));
-  EXPECT_EQ(before.findBlock("gaussian_blur"), nullptr);
+  EXPECT_EQ(before.spec.findBlock("gaussian_blur"), nullptr);
   EXPECT_EQ(before.spec.blocks.size() + 1, after.spec.blocks.size());
 }
 
@@ -70,16 +70,16 @@ TEST(NetEdits, NamesFromTypesAreSnakeCaseAndFree) {
 TEST(NetEdits, RemovingBlocksTakesTheirLinksPositionsAndFeedbackReferences) {
   const NetDocument before = net();
   NetDocument after = edits::removeBlocks(before, {"gray", "otsu"});
-  EXPECT_EQ(after.findBlock("gray"), nullptr);
+  EXPECT_EQ(after.spec.findBlock("gray"), nullptr);
   EXPECT_EQ(links(after), std::vector<std::string>{"threshold.image -> detector.image"});
   EXPECT_EQ(after.positions.count("gray"), 0u);
   // The initial value read from otsu goes; the constant stays, and so does the feedback.
-  ASSERT_TRUE(after.findBlock("threshold")->feedback);
-  ASSERT_EQ(after.findBlock("threshold")->feedback->initial.size(), 1u);
-  EXPECT_EQ(after.findBlock("threshold")->feedback->initial[0].str(), "60");
+  ASSERT_TRUE(after.spec.findBlock("threshold")->feedback);
+  ASSERT_EQ(after.spec.findBlock("threshold")->feedback->initial.size(), 1u);
+  EXPECT_EQ(after.spec.findBlock("threshold")->feedback->initial[0].str(), "60");
   // A feedback scored by a removed block goes with it.
   after = edits::removeBlocks(after, {"detector"});
-  EXPECT_FALSE(after.findBlock("threshold")->feedback);
+  EXPECT_FALSE(after.spec.findBlock("threshold")->feedback);
   EXPECT_EQ(links(before).size(), 3u);
 
   EXPECT_EQ(errorOf([&] { edits::removeBlocks(before, {"gray", "nope"}); }), "no block named 'nope'");
@@ -102,13 +102,13 @@ TEST(NetEdits, LinksAreAddedAndRemovedByTheirEndpoints) {
 
 TEST(NetEdits, APropertyIsSetChangedAndBackToItsDefault) {
   const NetDocument set = edits::setProperty(net(), "otsu", "threshold", std::string("90"));
-  ASSERT_EQ(set.findBlock("otsu")->properties.size(), 1u);
-  EXPECT_EQ(set.findBlock("otsu")->properties[0].text, "90");
+  ASSERT_EQ(set.spec.findBlock("otsu")->properties.size(), 1u);
+  EXPECT_EQ(set.spec.findBlock("otsu")->properties[0].text, "90");
   const NetDocument changed = edits::setProperty(set, "otsu", "threshold", std::string("95"));
-  ASSERT_EQ(changed.findBlock("otsu")->properties.size(), 1u);
-  EXPECT_EQ(changed.findBlock("otsu")->properties[0].text, "95");
-  EXPECT_EQ(set.findBlock("otsu")->properties[0].text, "90");
-  EXPECT_TRUE(edits::setProperty(changed, "otsu", "threshold", std::nullopt).findBlock("otsu")->properties.empty());
+  ASSERT_EQ(changed.spec.findBlock("otsu")->properties.size(), 1u);
+  EXPECT_EQ(changed.spec.findBlock("otsu")->properties[0].text, "95");
+  EXPECT_EQ(set.spec.findBlock("otsu")->properties[0].text, "90");
+  EXPECT_TRUE(edits::setProperty(changed, "otsu", "threshold", std::nullopt).spec.findBlock("otsu")->properties.empty());
   // Whether the property exists is the engine's to say when the net is built.
   EXPECT_EQ(errorOf([] { edits::setProperty(net(), "nope", "x", std::string("1")); }), "no block named 'nope'");
 }
@@ -117,22 +117,22 @@ TEST(NetEdits, RenamingCarriesTheNameThroughLinksFeedbackAndPosition) {
   const NetDocument before = net();
   NetDocument after = edits::renameBlock(before, "detector", "det");
   EXPECT_EQ(links(after).back(), "threshold.image -> det.image");
-  EXPECT_EQ(after.findBlock("threshold")->feedback->score_block, "det");
+  EXPECT_EQ(after.spec.findBlock("threshold")->feedback->score_block, "det");
   after = edits::renameBlock(after, "otsu", "o");
-  EXPECT_EQ(after.findBlock("threshold")->feedback->initial[1].str(), "o.threshold");
+  EXPECT_EQ(after.spec.findBlock("threshold")->feedback->initial[1].str(), "o.threshold");
   after = edits::renameBlock(after, "gray", "g");
   EXPECT_EQ(after.positions.count("gray"), 0u);
   EXPECT_EQ(after.positions.at("g"), (edits::Position{200, 0}));
-  EXPECT_EQ(before.findBlock("threshold")->feedback->score_block, "detector");
+  EXPECT_EQ(before.spec.findBlock("threshold")->feedback->score_block, "detector");
   EXPECT_EQ(errorOf([&] { edits::renameBlock(before, "gray", "source"); }), "a block named 'source' exists already");
 }
 
 TEST(NetEdits, PasteMakesNamesUniqueAndRenamesItsLinksAndFeedback) {
   const NetDocument before = net();
   std::vector<edits::PastedBlock> blocks(2);
-  blocks[0].spec = *before.findBlock("threshold");
+  blocks[0].spec = *before.spec.findBlock("threshold");
   blocks[0].position = edits::Position{1, 2};
-  blocks[1].spec = *before.findBlock("detector");
+  blocks[1].spec = *before.spec.findBlock("detector");
   const edits::Pasted pasted =
       edits::paste(before, blocks, {{"threshold.image", "detector.image"}, {"gray.image", "threshold.image"}});
   EXPECT_EQ(pasted.names.at("threshold"), "threshold_2");
@@ -141,7 +141,7 @@ TEST(NetEdits, PasteMakesNamesUniqueAndRenamesItsLinksAndFeedback) {
   // Links between pasted blocks follow both; a link from a block of the net keeps that block.
   EXPECT_EQ(all[all.size() - 2], "threshold_2.image -> detector_2.image");
   EXPECT_EQ(all.back(), "gray.image -> threshold_2.image");
-  const BlockSpec& copy = *pasted.doc.findBlock("threshold_2");
+  const BlockSpec& copy = *pasted.doc.spec.findBlock("threshold_2");
   EXPECT_EQ(copy.feedback->score_block, "detector_2");
   EXPECT_EQ(copy.feedback->initial[1].str(), "otsu.threshold");  // otsu was not pasted
   EXPECT_EQ(pasted.doc.positions.at("threshold_2"), (edits::Position{1, 2}));

@@ -14,24 +14,8 @@ namespace marker {
 
 namespace {
 
-void setProperty(BlockSpec& block, const std::string& name, const std::string& text) {
-  for (auto& p : block.properties) {
-    if (p.name == name) {
-      p.text = text;
-      return;
-    }
-  }
-  PropertySetting s;
-  s.name = name;
-  s.text = text;
-  s.loc = block.loc;
-  block.properties.push_back(s);
-}
-
 BlockSpec& findBlock(NetSpec& spec, const std::string& name) {
-  for (auto& b : spec.blocks) {
-    if (b.name == name) return b;
-  }
+  if (BlockSpec* b = spec.findBlock(name)) return *b;
   throw std::runtime_error(spec.origin + ": the marker detection net has no block '" + name + "'");
 }
 
@@ -42,14 +26,7 @@ MarkerDetectionNet::MarkerDetectionNet(const std::string& net_path, const std::s
     : mode_(mode) {
   NetSpec spec = parseNetFile(net_path);
   // Feed the image and camera_info from memory instead of files.
-  for (const char* fed : {"source", "camera"}) {
-    auto& blocks = spec.blocks;
-    blocks.erase(std::remove_if(blocks.begin(), blocks.end(), [&](const BlockSpec& b) { return b.name == fed; }),
-                 blocks.end());
-    auto& links = spec.links;
-    links.erase(std::remove_if(links.begin(), links.end(), [&](const LinkSpec& l) { return l.from_block == fed; }),
-                links.end());
-  }
+  for (const char* fed : {"source", "camera"}) spec.removeBlock(fed);
   BlockSpec& threshold = findBlock(spec, "threshold");
   if (mode.feedback() && !threshold.feedback) throw std::runtime_error(net_path + ": block 'threshold' has no feedback");
   if (mode.kind == ThresholdMode::Kind::AsWritten) {
@@ -69,9 +46,9 @@ MarkerDetectionNet::MarkerDetectionNet(const std::string& net_path, const std::s
     f.fine_radius.reset();
   } else {
     threshold.feedback.reset();
-    setProperty(threshold, "threshold", std::to_string(mode.fixed));
+    threshold.setProperty("threshold", std::to_string(mode.fixed));
   }
-  setProperty(findBlock(spec, "detector"), "marker", boost::filesystem::absolute(marker_path).string());
+  findBlock(spec, "detector").setProperty("marker", boost::filesystem::absolute(marker_path).string());
   ExecutorOptions options;
   options.threads = threads;
   executor_.reset(new Executor(Net::build(spec), options));

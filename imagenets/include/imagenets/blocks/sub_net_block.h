@@ -61,6 +61,26 @@ class SubNetBlock : public Block, public InnerNet {
   bool untilDone(const std::vector<std::vector<Value>>& results, const std::vector<Value>& inputs,
                  std::string* verdict);
 
+  // The steps of configure(): this block's ports from the inner net's port blocks (`origin` names
+  // it in errors); the until net and its inputs, each matched to an input or a collection.
+  void declarePorts(const std::string& origin);
+  void configureUntil(const std::vector<std::string>& chain);
+  UntilInPort untilInput(const std::string& block, const std::string& port, const PortType& type,
+                         const std::string& origin) const;
+
+  // What the repetitions of one run gave.
+  struct Repetitions {
+    std::vector<std::vector<Value>> results;  // per output, of the repetitions that succeeded
+    int failures = 0, ran = 0;
+    std::string first_failure, first_failure_message;
+  };
+  // The steps of process(): how many repetitions at least and at most; one repetition (true: no
+  // more are needed); the outputs from them, or the error when too many failed.
+  int repetitions(Context& ctx) const;
+  int maxRepetitions(Context& ctx, int repeat) const;
+  bool repeatOnce(int i, int repeat, int max_repeat, Context& ctx, const std::vector<Value>& inputs, Repetitions& r);
+  void setOutputs(Context& ctx, const Repetitions& r) const;
+
   std::unique_ptr<Executor> executor_;
   std::unique_ptr<Executor> until_;
   std::vector<UntilInPort> until_inputs_;
