@@ -192,9 +192,10 @@ void printRow(const std::string& name, const Figures& f) {
               f.clean_found ? f.clean_sum_mm / f.clean_found : 0, f.clean_found ? f.clean_sum_deg / f.clean_found : 0,
               f.clean_worst_mm, f.disturbed_found, f.disturbed, f.disturbed_passed, f.gated_worst_mm);
   if (name != kDefault) return;
-  const double pair_cpu = 2 * f.cpu_ms / views;
-  imagenets::printSummaryRow("calibration detection, CPU ms per stereo pair (the calibration's net)", pair_cpu, NAN,
-                             "<= 8 ms", pair_cpu <= 8);
+  // Per image, as the column above and the hand-written detection's old 6.94 ms figure.
+  const double image_cpu = f.cpu_ms / views;
+  imagenets::printSummaryRow("calibration detection, CPU ms per image (the calibration's net)", image_cpu, NAN,
+                             "<= 8 ms", image_cpu <= 8);
   imagenets::printSummaryRow("calibration detection, wall ms per stereo pair (left, right in parallel)",
                              f.pair_wall_ms / (views / 2), NAN, "", false);
   imagenets::printSummaryRow("calibration detection, clean views found", f.clean_found, f.clean, "all",

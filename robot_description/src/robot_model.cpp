@@ -136,10 +136,12 @@ void checkUrdfFormKeys(const YAML::Node& root, const std::string& w) {
                       "home_deg", "link_prefix"},
                 w + ": arm");
   onlyKnownKeys(need(arm, "marker", w + ": arm"), {"link", "size"}, w + ": arm.marker");
-  onlyKnownKeys(head, {"tip_link", "stereo_camera", "calibration_pose_deg", "home_deg", "link_prefix"}, w + ": head");
+  onlyKnownKeys(head, {"tip_link", "stereo_camera", "mono_camera", "calibration_pose_deg", "home_deg", "link_prefix"},
+                w + ": head");
   onlyKnownKeys(need(head, "stereo_camera", w + ": head"),
                 {"left_link", "right_link", "width", "height", "left_camera_info", "right_camera_info"},
                 w + ": head.stereo_camera");
+  if (head["mono_camera"]) onlyKnownKeys(head["mono_camera"], {"link", "camera_info"}, w + ": head.mono_camera");
 }
 
 // A description whose kinematics are a URDF's (urdf_kinematics.h): the URDF (loadRobotDescription)
