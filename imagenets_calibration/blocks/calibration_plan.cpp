@@ -48,68 +48,11 @@ class CalibrationPlan : public imagenets::Block {
       throw imagenets::BlockError("properties 'replay' and 'bag': set one of them, not both");
     }
     if (!plan->bag_file.empty()) {
-      const RobotModel& model = robotModel(ctx.property<std::string>("description"));
-      try {
-        const auto bag = readBagSamples(plan->bag_file, sampleJoints(model), bagSampleSettings(ctx));
-        plan->samples = static_cast<int>(bag->samples.size());
-      } catch (const std::exception& e) {
-        throw imagenets::BlockError(std::string("property 'bag': ") + e.what());
-      }
-      if (plan->samples == 0) {
-        throw imagenets::BlockError("property 'bag': no samples: " +
-                                    readBagSamples(plan->bag_file, sampleJoints(model), bagSampleSettings(ctx))->report);
-      }
+      planBag(ctx, *plan);
     } else if (!plan->replay_file.empty()) {
-      try {
-        plan->samples = static_cast<int>(loadCalibration(plan->replay_file).result.samples.size());
-      } catch (const std::exception& e) {
-        throw imagenets::BlockError(std::string("property 'replay': ") + e.what());
-      }
-      if (plan->samples == 0) throw imagenets::BlockError("property 'replay': " + plan->replay_file + " holds no samples");
+      planReplay(*plan);
     } else {
-      const int poses = ctx.property<int>("poses");
-      if (poses == 0 && plan->loops % 2 == 0) {
-        throw imagenets::BlockError("property 'loops': redundancy must be odd and >= 1 (the per-axis median needs a "
-                                    "middle value), got " + std::to_string(plan->loops));
-      }
-      if (poses > 0 && plan->method == "paper" && poses % 2 == 0) {
-        throw imagenets::BlockError("property 'poses': the paper method's samples must be odd (the per-axis median "
-                                    "needs a middle value), got " + std::to_string(poses));
-      }
-      const RobotModel& model = robotModel(ctx.property<std::string>("description"));
-      const auto& d = model.description();
-      plan->samples = poses > 0 ? poses : plan->loops * (plan->method == "joint" ? ctx.property<int>("poses_per_loop") : 1);
-      plan->max_samples = plan->samples;
-      plan->target_uncertainty = ctx.property<double>("target_uncertainty");
-      plan->target_uncertainty_rotation = ctx.property<double>("target_uncertainty_rotation");
-      if (plan->target_uncertainty > 0 || plan->target_uncertainty_rotation > 0) {
-        // Only the joint method reports an uncertainty; the paper's median has none to reach.
-        if (plan->method != "joint") {
-          throw imagenets::BlockError("property 'target_uncertainty': an uncertainty target needs the joint method "
-                                      "(the paper method reports no covariance), method is '" + plan->method + "'");
-        }
-        const int max_poses = ctx.property<int>("max_poses");
-        if (max_poses < plan->samples) {
-          throw imagenets::BlockError("property 'max_poses': " + std::to_string(max_poses) + " is below the " +
-                                      std::to_string(plan->samples) + " poses the plan takes anyway");
-        }
-        plan->max_samples = max_poses;
-      }
-      const double away = ctx.property<double>("reapproach_deg") * M_PI / 180.0;
-      // calibrationPoses(n)'s first k poses are those of calibrationPoses(k): the poses added for a
-      // target are the ones a larger plan would have taken next.
-      for (const auto& pose : calibrationPoses(model, plan->max_samples, plan->method)) {
-        sensor_msgs::JointState arm, head, approach;
-        arm.name = approach.name = d.arm.names();
-        head.name = d.head.names();
-        arm.position = approach.position = pose.arm;
-        head.position = pose.head;
-        // The paper's procedure comes to the calibration pose anew every loop (the first too).
-        if (plan->method == "paper" && approach.position.size() > 3) approach.position[3] -= away;
-        plan->arm.push_back(arm);
-        plan->head.push_back(head);
-        plan->arm_approach.push_back(approach);
-      }
+      planPoses(ctx, *plan);
     }
     if (plan->max_samples < plan->samples) plan->max_samples = plan->samples;  // replay
     auto count = boost::make_shared<std_msgs::Int32>();
@@ -119,6 +62,84 @@ class CalibrationPlan : public imagenets::Block {
     ctx.output("plan", plan);
     ctx.output("samples", count);
     ctx.output("max_samples", max_count);
+  }
+
+ private:
+  // A bag's still stereo pairs are the samples.
+  static void planBag(imagenets::Context& ctx, imagenets_calibration_msgs::CalibrationPlan& plan) {
+    const RobotModel& model = robotModel(ctx.property<std::string>("description"));
+    try {
+      const auto bag = readBagSamples(plan.bag_file, sampleJoints(model), bagSampleSettings(ctx));
+      plan.samples = static_cast<int>(bag->samples.size());
+    } catch (const std::exception& e) {
+      throw imagenets::BlockError(std::string("property 'bag': ") + e.what());
+    }
+    if (plan.samples == 0) {
+      throw imagenets::BlockError("property 'bag': no samples: " +
+                                  readBagSamples(plan.bag_file, sampleJoints(model), bagSampleSettings(ctx))->report);
+    }
+  }
+
+  // A saved calibration's samples are replayed.
+  static void planReplay(imagenets_calibration_msgs::CalibrationPlan& plan) {
+    try {
+      plan.samples = static_cast<int>(loadCalibration(plan.replay_file).result.samples.size());
+    } catch (const std::exception& e) {
+      throw imagenets::BlockError(std::string("property 'replay': ") + e.what());
+    }
+    if (plan.samples == 0) throw imagenets::BlockError("property 'replay': " + plan.replay_file + " holds no samples");
+  }
+
+  // The robot moves: the sample count (and with a target the most samples), then every pose.
+  static void planPoses(imagenets::Context& ctx, imagenets_calibration_msgs::CalibrationPlan& plan) {
+    const int poses = ctx.property<int>("poses");
+    if (poses == 0 && plan.loops % 2 == 0) {
+      throw imagenets::BlockError("property 'loops': redundancy must be odd and >= 1 (the per-axis median needs a "
+                                  "middle value), got " + std::to_string(plan.loops));
+    }
+    if (poses > 0 && plan.method == "paper" && poses % 2 == 0) {
+      throw imagenets::BlockError("property 'poses': the paper method's samples must be odd (the per-axis median "
+                                  "needs a middle value), got " + std::to_string(poses));
+    }
+    const RobotModel& model = robotModel(ctx.property<std::string>("description"));
+    plan.samples = poses > 0 ? poses : plan.loops * (plan.method == "joint" ? ctx.property<int>("poses_per_loop") : 1);
+    plan.max_samples = plan.samples;
+    plan.target_uncertainty = ctx.property<double>("target_uncertainty");
+    plan.target_uncertainty_rotation = ctx.property<double>("target_uncertainty_rotation");
+    if (plan.target_uncertainty > 0 || plan.target_uncertainty_rotation > 0) {
+      // Only the joint method reports an uncertainty; the paper's median has none to reach.
+      if (plan.method != "joint") {
+        throw imagenets::BlockError("property 'target_uncertainty': an uncertainty target needs the joint method "
+                                    "(the paper method reports no covariance), method is '" + plan.method + "'");
+      }
+      const int max_poses = ctx.property<int>("max_poses");
+      if (max_poses < plan.samples) {
+        throw imagenets::BlockError("property 'max_poses': " + std::to_string(max_poses) + " is below the " +
+                                    std::to_string(plan.samples) + " poses the plan takes anyway");
+      }
+      plan.max_samples = max_poses;
+    }
+    addPoses(ctx, model, plan);
+  }
+
+  static void addPoses(imagenets::Context& ctx, const RobotModel& model,
+                       imagenets_calibration_msgs::CalibrationPlan& plan) {
+    const auto& d = model.description();
+    const double away = ctx.property<double>("reapproach_deg") * M_PI / 180.0;
+    // calibrationPoses(n)'s first k poses are those of calibrationPoses(k): the poses added for a
+    // target are the ones a larger plan would have taken next.
+    for (const auto& pose : calibrationPoses(model, plan.max_samples, plan.method)) {
+      sensor_msgs::JointState arm, head, approach;
+      arm.name = approach.name = d.arm.names();
+      head.name = d.head.names();
+      arm.position = approach.position = pose.arm;
+      head.position = pose.head;
+      // The paper's procedure comes to the calibration pose anew every loop (the first too).
+      if (plan.method == "paper" && approach.position.size() > 3) approach.position[3] -= away;
+      plan.arm.push_back(arm);
+      plan.head.push_back(head);
+      plan.arm_approach.push_back(approach);
+    }
   }
 };
 

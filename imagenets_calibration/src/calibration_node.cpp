@@ -186,12 +186,7 @@ void CalibrationNode::loadNets(const std::string& net, const std::string& replay
   live_net_ = std::make_unique<CalibrationNetInterface>(*live_);  // throws naming what the net lacks
   // The replay twin: the same net, its sample sub-net replaced by the replay sample net.
   imagenets::NetSpec replay_spec = spec;
-  for (auto& b : replay_spec.blocks) {
-    if (b.name != live_net_->samplesBlock()) continue;
-    for (auto& p : b.properties) {
-      if (p.name == "net") p.text = replay_net;
-    }
-  }
+  replay_spec.block(live_net_->samplesBlock()).setProperty("net", replay_net);
   replay_ = std::make_unique<imagenets::Executor>(imagenets::Net::build(replay_spec));
   replay_net_ = std::make_unique<CalibrationNetInterface>(*replay_);
   setDescriptionAndTarget(net);

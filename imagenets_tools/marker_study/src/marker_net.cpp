@@ -12,22 +12,13 @@
 namespace imagenets {
 namespace marker {
 
-namespace {
-
-BlockSpec& findBlock(NetSpec& spec, const std::string& name) {
-  if (BlockSpec* b = spec.findBlock(name)) return *b;
-  throw std::runtime_error(spec.origin + ": the marker detection net has no block '" + name + "'");
-}
-
-}  // namespace
-
 MarkerDetectionNet::MarkerDetectionNet(const std::string& net_path, const std::string& marker_path,
                                        const ThresholdMode& mode, int threads)
     : mode_(mode) {
   NetSpec spec = parseNetFile(net_path);
   // Feed the image and camera_info from memory instead of files.
   for (const char* fed : {"source", "camera"}) spec.removeBlock(fed);
-  BlockSpec& threshold = findBlock(spec, "threshold");
+  BlockSpec& threshold = spec.block("threshold");
   if (mode.feedback() && !threshold.feedback) throw std::runtime_error(net_path + ": block 'threshold' has no feedback");
   if (mode.kind == ThresholdMode::Kind::AsWritten) {
     threshold.feedback->parallel = mode.parallel;
@@ -48,7 +39,7 @@ MarkerDetectionNet::MarkerDetectionNet(const std::string& net_path, const std::s
     threshold.feedback.reset();
     threshold.setProperty("threshold", std::to_string(mode.fixed));
   }
-  findBlock(spec, "detector").setProperty("marker", boost::filesystem::absolute(marker_path).string());
+  spec.block("detector").setProperty("marker", boost::filesystem::absolute(marker_path).string());
   ExecutorOptions options;
   options.threads = threads;
   executor_.reset(new Executor(Net::build(spec), options));
