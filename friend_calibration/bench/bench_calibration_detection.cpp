@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <future>
 #include <string>
 #include <vector>
@@ -103,13 +104,16 @@ struct Variants {
   }
 
   // The shipped net with its threshold search changed and, if given, other region margins tried
-  // (0 = the whole image); one net per camera, in parallel.
+  // (0 = the whole image) and the search's detector given other properties; one net per camera,
+  // in parallel.
   Detect variant(const std::function<void(imagenets::FeedbackSpec&)>& change, bool use_prediction,
-                 std::vector<double> region_margins_px = {}) {
+                 std::vector<double> region_margins_px = {},
+                 const std::map<std::string, std::string>& detector_properties = {}) {
     imagenets::NetSpec spec = CalibrationMarkerNet::specWithSearch([&](imagenets::NetSpec& search) {
       for (auto& b : search.blocks) {
         if (b.feedback) change(*b.feedback);
       }
+      for (const auto& [name, text] : detector_properties) search.block("detector").setProperty(name, text);
     });
     for (auto& b : spec.blocks) {
       if (b.feedback && !region_margins_px.empty()) b.feedback->values = region_margins_px;
@@ -160,10 +164,12 @@ std::vector<Variant> makeVariants(Variants& v) {
   for (int t = 20; t <= 235; t += 5) every5.push_back(t);
   return {
       {kDefault, v.variant(unchanged, true)},
-      // Its region: 300 px around the prediction, the whole image only where that misses the
-      // marker; a narrower first region, and always the whole image.
-      {"region 120 px, else the whole image", v.variant(unchanged, true, {120, 0})},
+      // Its region: 120 px around the prediction, the whole image only where that misses the
+      // marker; a wider first region, and always the whole image.
+      {"region 300 px, else the whole image", v.variant(unchanged, true, {300, 0})},
       {"region always the whole image", v.variant(unchanged, true, {0})},
+      // Every quadrilateral examined, also those under half the predicted marker's size.
+      {"small quadrilaterals examined too", v.variant(unchanged, true, {}, {{"min_side_of_hint", "0"}})},
       {"always the coarse-to-fine sweep", v.variant(always_sweep, true)},
       {"grid downwards 190..10 (Otsu first, stop if good)", v.variant(downwardsFrom(190), true)},
       {"grid downwards 220..10 (Otsu first, stop if good)", v.variant(downwardsFrom(220), true)},

@@ -59,8 +59,8 @@ TEST(CalibrationMarkerNet, FindsTheMarkerWhereItIsOtsuFirstAndStopsWhenGood) {
     // the marker was not found there, which only a reflection over it may cause.
     const auto region = net.lastRegionTrace();
     ASSERT_TRUE(region) << what;
-    if (o.found && !v.reflection) EXPECT_EQ(region->values, std::vector<double>{300}) << what;
-    if (!o.found) EXPECT_EQ(region->values, (std::vector<double>{300, 0})) << what;
+    if (o.found && !v.reflection) EXPECT_EQ(region->values, std::vector<double>{120}) << what;
+    if (!o.found) EXPECT_EQ(region->values, (std::vector<double>{120, 0})) << what;
     if (!o.found) {
       EXPECT_TRUE(v.reflection) << what << ": " << o.reason;  // only reflections may hide it
       continue;
@@ -154,7 +154,7 @@ TEST(CalibrationMarkerNet, AMarkerFarFromThePredictionIsFoundInTheWholeImage) {
   for (size_t i : {0u, 5u}) {
     const CalibrationView& v = data.views[i];
     // 0.25 m sideways at 0.6 m: ~580 px, towards the wider side of the image, so that the marker
-    // lies outside the first region (300 px around the 140 px marker) but the region not wholly
+    // lies outside the first region (120 px around the 140 px marker) but the region not wholly
     // outside the image.
     Eigen::Isometry3d off = v.predicted;
     off.translation().x() += v.truth.translation().x() < 0 ? 0.25 : -0.25;
@@ -163,9 +163,9 @@ TEST(CalibrationMarkerNet, AMarkerFarFromThePredictionIsFoundInTheWholeImage) {
     EXPECT_LT((o.pose.translation() - v.truth.translation()).norm(), 0.001) << "view " << i;
     const auto region = net.lastRegionTrace();
     ASSERT_TRUE(region);
-    EXPECT_EQ(region->values, (std::vector<double>{300, 0})) << "view " << i;
+    EXPECT_EQ(region->values, (std::vector<double>{120, 0})) << "view " << i;
     EXPECT_EQ(region->chosen_value, 0) << "view " << i;
-    EXPECT_TRUE(std::isnan(region->scores.front())) << "view " << i << ": the margin 300 px region held a marker";
+    EXPECT_TRUE(std::isnan(region->scores.front())) << "view " << i << ": the margin 120 px region held a marker";
   }
 }
 

@@ -39,6 +39,10 @@ class SquareMarkerDetector : public Block {
                      "outlines of dark regions traced on every n-th pixel and row of the thresholded image "
                      "(faster on large, noisy images; corners are still located on the gray image)")
         .range(1, 8);
+    addProperty<double>("min_side_of_hint", 0.0,
+                        "with a pose hint: quadrilaterals whose shortest side is under this share of the hinted "
+                        "marker's are not examined (0: all)")
+        .range(0.0, 1.0);
     addProperty<double>("min_inner_side_px", 0.0,
                         "inner corners join the pose fit only when the inner square's sides are this long (px; 0: always)")
         .range(0.0, 10000.0);
@@ -73,6 +77,7 @@ class SquareMarkerDetector : public Block {
     options.min_confidence = ctx.property<double>("min_confidence");
     options.refine_passes = ctx.property<int>("refine_passes");
     options.decimate = ctx.property<int>("decimate");
+    options.min_side_of_hint = ctx.property<double>("min_side_of_hint");
     options.min_inner_side_px = ctx.property<double>("min_inner_side_px");
     options.edge_model = ctx.property<bool>("edge_model");
     options.edge_model_max_side_px = ctx.property<double>("edge_model_max_side_px");

@@ -612,23 +612,38 @@ void checkDetectInputs(const cv::Mat& gray, const cv::Mat& binary, const render:
   if (marker.pattern.empty()) throw std::invalid_argument("marker '" + marker.name + "' has no pattern");
 }
 
-// How finely the dark regions are traced: options.decimate, unless the pose hint says the marker's
-// border is narrow in the image (under kMinDecimatedBorderPx at that scale: far, or seen steeply).
-constexpr double kMinDecimatedBorderPx = 3;
-int decimation(const render::CameraModel& camera, const MarkerDescription& marker, const DetectorOptions& options) {
-  const int d = std::max(1, options.decimate);
-  if (d == 1 || !options.pose_hint) return d;
+// Where the pose hint puts the marker's outer corners in the image; empty without a hint or with
+// the marker behind the camera.
+std::vector<cv::Point2d> hintedOuterCorners(const render::CameraModel& camera, const MarkerDescription& marker,
+                                            const DetectorOptions& options) {
   std::vector<cv::Point2d> outer;
+  if (!options.pose_hint) return outer;
   const std::vector<cv::Point3d> defined = marker.definedPoints();
   for (int j = 0; j < 4; ++j) {
     const Eigen::Vector3d p = *options.pose_hint * Eigen::Vector3d(defined[j].x, defined[j].y, defined[j].z);
-    if (p.z() <= 0) return 1;
+    if (p.z() <= 0) return {};
     outer.push_back(camera.project(p));
   }
+  return outer;
+}
+
+// How finely the dark regions are traced: options.decimate, unless the pose hint says the marker's
+// border is narrow in the image (under kMinDecimatedBorderPx at that scale: far, or seen steeply).
+constexpr double kMinDecimatedBorderPx = 3;
+int decimation(const std::vector<cv::Point2d>& hinted, const MarkerDescription& marker, const DetectorOptions& options) {
+  const int d = std::max(1, options.decimate);
+  if (d == 1 || !options.pose_hint) return d;
+  if (hinted.empty()) return 1;
   // The border's narrowest width: the quadrilateral's (a parallelogram's area over its longest
   // side), scaled by the border's share of the marker; a steep view narrows it in any direction.
-  const double area = std::abs(cv::contourArea(std::vector<cv::Point2f>(outer.begin(), outer.end())));
-  return area / sideRange(outer).second * marker.border >= kMinDecimatedBorderPx * d ? d : 1;
+  const double area = std::abs(cv::contourArea(std::vector<cv::Point2f>(hinted.begin(), hinted.end())));
+  return area / sideRange(hinted).second * marker.border >= kMinDecimatedBorderPx * d ? d : 1;
+}
+
+// The shortest side (px) a quadrilateral must have to be examined.
+double minSidePx(const std::vector<cv::Point2d>& hinted, const DetectorOptions& options) {
+  if (hinted.empty() || options.min_side_of_hint <= 0) return options.min_side_px;
+  return std::max(options.min_side_px, options.min_side_of_hint * sideRange(hinted).first);
 }
 
 // The candidate that matches the pattern best: every dark region's outline that approximates a
@@ -644,7 +659,9 @@ Candidate bestCandidate(const cv::Mat& gray, const cv::Mat& binary, const render
 
   // Dark regions (the border is below the threshold) and their outer boundaries; with `decimate`,
   // of every d-th pixel of every d-th row (the rough corners are refined on the gray image anyway).
-  const int d = decimation(camera, marker, options);
+  const std::vector<cv::Point2d> hinted = hintedOuterCorners(camera, marker, options);
+  const int d = decimation(hinted, marker, options);
+  const double min_side_px = minSidePx(hinted, options);
   cv::Mat dark;
   if (d > 1) {
     dark.create((binary.rows + d - 1) / d, (binary.cols + d - 1) / d, CV_8UC1);
@@ -666,7 +683,7 @@ Candidate bestCandidate(const cv::Mat& gray, const cv::Mat& binary, const render
   const cv::Rect2f inside(3.0f / d, 3.0f / d, (gray.cols - 6.0f) / d, (gray.rows - 6.0f) / d);
   for (size_t ci = 0; ci < contours.size(); ++ci) {
     if (hierarchy[ci][3] >= 0) continue;  // a hole's boundary, not a region's outline
-    const auto corners = convexQuadrilateral(contours[ci], 0.05, options.min_side_px / d, inside);
+    const auto corners = convexQuadrilateral(contours[ci], 0.05, min_side_px / d, inside);
     if (!corners) continue;
     ++*candidates;
     std::vector<cv::Point2d> quad;
@@ -692,7 +709,7 @@ Candidate bestCandidate(const cv::Mat& gray, const cv::Mat& binary, const render
     // The limit holds for the located square too: a speck whose contour passed it can shrink to
     // a few pixels, and a few pixels match a blurred pattern about as well as anything.
     const double shortest_px = sideRange(outer_px).first;
-    if (shortest_px < options.min_side_px) continue;
+    if (shortest_px < min_side_px) continue;
     if (options.refine_passes == 0) cand.outer_norm = normalise(outer_px, camera);
     matchPattern(gray, camera, marker, pattern_cells, options.pattern_cells, nullptr, {}, &cand);
     if (cand.confidence > best.confidence) best = cand;

@@ -250,6 +250,27 @@ TEST(MarkerDetector, PoseHintPicksAmongAmbiguousIppeSolutions) {
   EXPECT_LT(marker::rotationAngle(hinted.alt_pose, free.pose), 1e-9);
 }
 
+TEST(MarkerDetector, QuadrilateralsFarSmallerThanTheHintedMarkerAreNotExamined) {
+  const render::Renderer r(friendCamera(), 3);
+  const Eigen::Isometry3d truth = render::lookAtOriginPose(0.6, 30 * kDeg, 20 * kDeg);
+  Shot s = shoot(r, gripper(), truth);
+  // Dark squares 20-40 px wide elsewhere (the marker's sides are ~140 px): specks and small parts.
+  for (int i = 0; i < 6; ++i) {
+    const cv::Rect square(40 + 150 * i, 40 + 8 * i, 20 + 4 * i, 20 + 4 * i);
+    s.gray(square).setTo(20);
+    s.binary(square).setTo(0);
+  }
+  marker::DetectorOptions options;
+  options.pose_hint = &truth;
+  const Detection all = marker::detect(s.gray, s.binary, friendCamera(), gripper(), options);
+  options.min_side_of_hint = 0.5;
+  const Detection large = marker::detect(s.gray, s.binary, friendCamera(), gripper(), options);
+  ASSERT_TRUE(all.found && large.found);
+  EXPECT_GE(all.candidates, 7);  // the marker and the six squares at least
+  EXPECT_EQ(large.candidates, 1) << all.candidates << " without the limit";
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(all.points[i], large.points[i]) << "point " << i;
+}
+
 TEST(MarkerDetector, RejectsBadInputs) {
   const cv::Mat gray(768, 1024, CV_8UC1, cv::Scalar(128));
   EXPECT_THROW(marker::detect(cv::Mat(), gray, friendCamera(), gripper()), std::invalid_argument);

@@ -82,6 +82,11 @@ struct DetectorOptions {
   // Optional pose hint (e.g. the previous frame's pose): when both IPPE solutions fit the points
   // about equally well (error ratio < ambiguity_ratio), the one closer to the hint is taken.
   const Eigen::Isometry3d* pose_hint = nullptr;
+  // With a pose hint: quadrilaterals whose shortest side is under this share of the hinted
+  // marker's shortest side (in the image) are not examined (0: all). The hint's scale is known to
+  // within tens of percent, so 0.5 loses no marker and skips the specks and far-off squares that
+  // are most of the candidates in a cluttered region.
+  double min_side_of_hint = 0;
   double ambiguity_ratio = 1.5;
 };
 
