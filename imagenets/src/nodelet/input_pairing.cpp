@@ -45,7 +45,10 @@ Value InputPairing::partner(size_t input, const ros::Time& stamp) const {
 std::optional<std::vector<Value>> InputPairing::add(size_t input, const Value& value) {
   auto& h = history_.at(input);
   h.push_back(value);
-  while (h.size() > std::max<size_t>(1, options_.history)) h.pop_front();
+  // A single input pairs with nothing: holding older messages would only keep their buffers
+  // (images) alive, so the allocator cannot hand them out again.
+  const size_t keep = history_.size() == 1 ? 1 : std::max<size_t>(1, options_.history);
+  while (h.size() > keep) h.pop_front();
   if (isSource()) return std::nullopt;
 
   // The time this set is about: the arrival's stamp, or (for a time-less arrival) the newest

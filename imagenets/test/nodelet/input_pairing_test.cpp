@@ -1,4 +1,5 @@
 // The nodelet host's stamp pairing, without ROS: which input sets make a block run.
+#include <boost/weak_ptr.hpp>
 #include <gtest/gtest.h>
 #include <sensor_msgs/Image.h>
 #include <std_msgs/Float64.h>
@@ -95,6 +96,23 @@ TEST(InputPairing, KeepsOnlyTheHistoryAskedFor) {
   pairing.add(1, image(3.0));
   EXPECT_FALSE(pairing.add(0, image(1.0)));  // b@1 was dropped
   EXPECT_TRUE(pairing.add(0, image(2.0)));
+}
+
+TEST(InputPairing, ASingleInputHoldsOnlyItsNewestMessage) {
+  // Nothing pairs with it, so older images are let go at once whatever the history asked for.
+  PairingOptions options;
+  options.history = 5;
+  InputPairing pairing({true}, options);
+  Value first = image(1.0);
+  const boost::weak_ptr<const void> held = first.data;
+  EXPECT_TRUE(pairing.add(0, first));
+  first = Value();
+  EXPECT_FALSE(held.expired());
+  const auto set = pairing.add(0, image(2.0));
+  ASSERT_TRUE(set);
+  EXPECT_EQ(stampOf((*set)[0]), 2.0);
+  EXPECT_TRUE(held.expired());
+  EXPECT_EQ(stampOf(pairing.latest()[0]), 2.0);
 }
 
 }  // namespace

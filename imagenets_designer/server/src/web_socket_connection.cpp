@@ -10,6 +10,9 @@ WebSocketConnection::WebSocketConnection(tcp::socket socket, int id, Hub& hub)
 
 void WebSocketConnection::accept(http::request<http::string_body> request) {
   ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+  // A preview (up to 147 kB of pixels) goes out as one frame: Beast's default cuts a message into
+  // 4 kB frames, each its own write, and the page waited for the last of ~36.
+  ws_.auto_fragment(false);
   ws_.read_message_max(0);  // sizes are checked per message below, so an oversized one is skipped, not fatal
   ws_.async_accept(request, [self = shared_from_this()](beast::error_code ec) {
     if (ec) return;
