@@ -89,7 +89,9 @@ void refineClearOfMarkers(const cv::Mat& gray, const cv::aruco::CharucoBoard& bo
                           const std::vector<std::vector<cv::Point2f>>& markers, const std::vector<int>& marker_ids,
                           const std::vector<int>& ids, std::vector<cv::Point2f>* corners) {
   constexpr float kArucoPixelOrigin = 0.5f;
-  constexpr int kSmallestWindow = 2;  // half-size; smaller windows are noisier than aruco's corner
+  // Half-size. A smaller clear window (margins under ~5 px) is noisier than aruco's pull: the
+  // marker study's 15 mm board, median error 0.09 mm with aruco's corners, 0.27 mm with 2.
+  constexpr int kSmallestWindow = 4;
   constexpr double kLargestMove = 1.0;  // px; a refinement that moves further has lost the corner
   const cv::TermCriteria stop(cv::TermCriteria::MAX_ITER | cv::TermCriteria::EPS, 100, 0.01);
   for (size_t i = 0; i < ids.size(); ++i) {
