@@ -1,5 +1,7 @@
 #include "imagenets/blocks/image.h"
 
+#include <algorithm>
+
 #include <cv_bridge/cv_bridge.h>
 
 namespace imagenets {
@@ -13,16 +15,11 @@ cv::Mat inputImage(const Context& ctx, const std::string& port, std::initializer
     throw BlockError("input '" + port + "': empty image (" + std::to_string(msg->width) + "x" +
                      std::to_string(msg->height) + ")");
   }
-  if (encodings.size() > 0) {
-    bool accepted = false;
-    std::string list;
-    for (const char* e : encodings) {
-      accepted = accepted || msg->encoding == e;
-      list += (list.empty() ? "" : ", ") + std::string(e);
-    }
-    if (!accepted) {
-      throw BlockError("input '" + port + "': encoding '" + msg->encoding + "' not accepted (expected " + list + ")");
-    }
+  if (encodings.size() > 0 &&
+      std::none_of(encodings.begin(), encodings.end(), [&](const char* e) { return msg->encoding == e; })) {
+    std::string list;  // built only for the error: every block reads its images through here
+    for (const char* e : encodings) list += (list.empty() ? "" : ", ") + std::string(e);
+    throw BlockError("input '" + port + "': encoding '" + msg->encoding + "' not accepted (expected " + list + ")");
   }
   if (encoding) *encoding = msg->encoding;
   if (header) *header = msg->header;

@@ -201,9 +201,11 @@ class BlockHost {
       running_ = true;  // ~status says "running" while inner progress comes in
       progress_.clear();
     }
-    // What runs inside the block (a sub-net) reports on ~status while it runs.
-    BlockInvocation run = invokeBlock(*block_, name_, cached_inputs_, block_->propertySnapshot(),
-                                      {RunChannel{[this](const RunEvent& e) { onInnerEvent(e); }, {}}});
+    // What runs inside the block (a sub-net) reports on ~status while it runs. The thread's CPU
+    // clock (two system calls) is read only while ~status is watched, the one place it shows.
+    InvocationOptions options{RunChannel{[this](const RunEvent& e) { onInnerEvent(e); }, {}}, {}};
+    options.cpu_time = status_pub_.getNumSubscribers() > 0;
+    BlockInvocation run = invokeBlock(*block_, name_, cached_inputs_, block_->propertySnapshot(), std::move(options));
     {
       std::lock_guard<std::mutex> lock(status_mutex_);
       running_ = false;
