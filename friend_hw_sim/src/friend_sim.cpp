@@ -33,10 +33,11 @@ FriendSim::FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh)
   head_link0_ = robot_description::urdfChainMountJoint(d, d.head).child;  // as the URDF TF comes from names it
   // ~move_joints false: only the standard interfaces (a robot without FRIEND's MoveJoints).
   const bool serve_move_joints = pnh_.param("move_joints", true);
-  const auto group = [&](const std::string& name, unsigned seed_offset) {
+  const auto group = [&](const std::string& name, const robot_description::KinematicChain& chain, unsigned seed_offset) {
     JointGroupConfig c;
-    if (serve_move_joints) c.move_action = name + "/move_joints";
-    c.trajectory_action = name + "_controller/follow_joint_trajectory";
+    // A chain without joints (a camera on a stand) has no controller to serve.
+    if (serve_move_joints && !chain.joints.empty()) c.move_action = name + "/move_joints";
+    if (!chain.joints.empty()) c.trajectory_action = name + "_controller/follow_joint_trajectory";
     c.controller = name + "_controller";
     c.abort_probability_param = pnh_.resolveName("faults/" + name + "_abort_probability");
     c.settle_joint_param = pnh_.resolveName("faults/settle_joint");
@@ -44,8 +45,8 @@ FriendSim::FriendSim(ros::NodeHandle nh, ros::NodeHandle pnh)
     c.seed = static_cast<unsigned>(pnh.param<int>("noise_seed", 1)) + seed_offset;
     return c;
   };
-  arm_ = std::make_unique<JointGroupServer>(nh_, group("arm", 11), d.arm, d.arm_home);
-  head_ = std::make_unique<JointGroupServer>(nh_, group("head", 23), d.head, d.head_home);
+  arm_ = std::make_unique<JointGroupServer>(nh_, group("arm", d.arm, 11), d.arm, d.arm_home);
+  head_ = std::make_unique<JointGroupServer>(nh_, group("head", d.head, 23), d.head, d.head_home);
   arm_->setTimeScale(time_scale_);
   head_->setTimeScale(time_scale_);
   joint_states_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);

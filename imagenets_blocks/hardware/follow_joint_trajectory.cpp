@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include <boost/make_shared.hpp>
 #include <control_msgs/FollowJointTrajectoryAction.h>
 #include <ros/master.h>
 #include <sensor_msgs/JointState.h>
@@ -70,7 +71,7 @@ std::string knownServers() {
 class FollowJointTrajectory : public Block {
  public:
   FollowJointTrajectory() {
-    addInput<sensor_msgs::JointState>("configuration", "target joint names and positions (rad)");
+    addInput<sensor_msgs::JointState>("configuration", "target joint names and positions (rad); none (and no property joints): reached at once");
     addOutput<sensor_msgs::JointState>(
         "reached", "the goal's joints as joint_states measured them after the motion, stamped then");
     addProperty<std::string>("action", "arm_controller/follow_joint_trajectory",
@@ -101,6 +102,14 @@ class FollowJointTrajectory : public Block {
   void process(Context& ctx) override {
     const auto target = ctx.input<sensor_msgs::JointState>("configuration");
     checkConfiguration(*target);
+    if (target->name.empty() && splitNames(ctx.property<std::string>("joints")).empty()) {
+      // Nothing to move (a head without joints: a camera on a stand): reached at once, no server
+      // asked, as a controller would answer a goal without joints.
+      auto reached = boost::make_shared<sensor_msgs::JointState>();
+      reached->header.stamp = ros::Time::now();
+      ctx.output("reached", reached);
+      return;
+    }
     const std::vector<std::string> joints = goalJoints(ctx, *target);
     const std::string topic = ctx.property<std::string>("joint_states");
     const double state_timeout = ctx.property<double>("state_timeout");
@@ -127,7 +136,6 @@ class FollowJointTrajectory : public Block {
       throw BlockError("input 'configuration': " + std::to_string(target.name.size()) + " names but " +
                        std::to_string(target.position.size()) + " positions");
     }
-    if (target.name.empty()) throw BlockError("input 'configuration' names no joint");
     for (size_t i = 0; i < target.name.size(); ++i) {
       if (!std::isfinite(target.position[i])) {
         throw BlockError("input 'configuration': joint '" + target.name[i] + "' has no finite position");
@@ -141,6 +149,9 @@ class FollowJointTrajectory : public Block {
   // The goal's joints: the controller's (property joints) or the input's.
   static std::vector<std::string> goalJoints(Context& ctx, const sensor_msgs::JointState& target) {
     std::vector<std::string> joints = splitNames(ctx.property<std::string>("joints"));
+    if (target.name.empty()) {
+      throw BlockError("input 'configuration' names no joint of the controller's (property joints: " + joined(joints) + ")");
+    }
     if (joints.empty()) joints = target.name;
     for (const auto& n : target.name) {
       if (std::find(joints.begin(), joints.end(), n) == joints.end()) {

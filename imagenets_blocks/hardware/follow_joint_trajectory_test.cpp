@@ -138,3 +138,20 @@ TEST(FollowJointTrajectory, BadInputIsNamedBeforeTheRobotIsAsked) {
   EXPECT_TRUE(contains(unknown, "joint 'wrist', which is not one of the controller's")) << unknown;
   EXPECT_TRUE(contains(unknown, "property joints: arm_joint_1, arm_joint_2, arm_joint_3")) << unknown;
 }
+
+// A head without joints (a camera on a stand) moves nowhere: the goal is reached at once, without
+// an action server (none runs here); with the controller's joints named, an empty goal is an error.
+TEST(FollowJointTrajectory, AGoalWithoutJointsIsReachedAtOnceWithoutAServer) {
+  ros::Time::init();
+  BlockHarness h("imagenets/FollowJointTrajectory");
+  h.set("server_timeout", 0.0);
+  h.input("configuration", boost::make_shared<sensor_msgs::JointState>()).run();
+  const auto reached = h.output<sensor_msgs::JointState>("reached");
+  ASSERT_TRUE(reached);
+  EXPECT_TRUE(reached->name.empty());
+  EXPECT_TRUE(reached->position.empty());
+  EXPECT_FALSE(reached->header.stamp.isZero());
+  h.set("joints", std::string("head_pan_joint head_tilt_joint"));
+  const std::string error = h.input("configuration", boost::make_shared<sensor_msgs::JointState>()).runError();
+  EXPECT_TRUE(contains(error, "names no joint of the controller's (property joints: head_pan_joint, head_tilt_joint)")) << error;
+}

@@ -1,7 +1,11 @@
+#include <set>
+
 #include <gtest/gtest.h>
 #include <imagenets_calibration_msgs/CalibrationPlan.h>
+#include <ros/package.h>
 #include <std_msgs/Int32.h>
 
+#include "imagenets_calibration/bundle_adjustment.h"
 #include "imagenets_calibration/calibration.h"
 #include "imagenets/blocks/block_harness.h"
 #include "robot_description/robot_model.h"
@@ -116,4 +120,32 @@ TEST(CalibrationPlan, AnUncertaintyTargetPlansTheNextPosesUpToMaxPoses) {
   paper.set("method", std::string("paper")).set("loops", 3).set("target_uncertainty", 0.001);
   EXPECT_NE(paper.runError().find("property 'target_uncertainty': an uncertainty target needs the joint method"),
             std::string::npos);
+}
+
+// A camera on a stand cannot turn: the plan's arm carries the target across its image (the centre
+// and towards each corner), every pose another one, the head's target always empty.
+TEST(CalibrationPlan, ACameraOnAStandSeesTheTargetCarriedAcrossItsImage) {
+  const RobotModel model(robot_description::loadRobotDescription(ros::package::getPath("robot_description") +
+                                                                 "/config/ur_stand/robot.yaml"));
+  std::string why;
+  const auto cameras = stereoCamerasOf(model.description(), &why);
+  ASSERT_TRUE(cameras) << why;
+  const auto poses = calibrationPoses(model, 30, "joint");
+  ASSERT_EQ(poses.size(), 30u);
+  std::set<std::pair<int, int>> cells;  // image thirds the target's centre falls in
+  double min_u = 1e9, max_u = -1e9, min_v = 1e9, max_v = -1e9;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    EXPECT_TRUE(poses[k].head.empty());
+    EXPECT_TRUE(model.description().arm.limitViolation(poses[k].arm).empty()) << "pose " << k;
+    for (size_t j = 0; j < k; ++j) EXPECT_NE(poses[k].arm, poses[j].arm) << "poses " << j << " and " << k;
+    const Eigen::Vector3d c = model.leftCamera({}).inverse() * model.marker(poses[k].arm).translation();
+    ASSERT_GT(c.z(), 0.5) << "pose " << k;
+    const Eigen::Vector2d uv = cameras->left.project(c);
+    min_u = std::min(min_u, uv.x()), max_u = std::max(max_u, uv.x());
+    min_v = std::min(min_v, uv.y()), max_v = std::max(max_v, uv.y());
+    cells.insert({static_cast<int>(3 * uv.x() / 1024), static_cast<int>(3 * uv.y() / 768)});
+  }
+  EXPECT_GE(cells.size(), 5u) << "the target's centre in " << cells.size() << " of the image's 9 thirds";
+  EXPECT_GT(max_u - min_u, 300) << min_u << " .. " << max_u << " px";
+  EXPECT_GT(max_v - min_v, 200) << min_v << " .. " << max_v << " px";
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Dense>
@@ -61,6 +62,39 @@ double robustSigma(std::vector<double> r) {
   return 1.4826 * imagenets::frames::median(std::move(r));
 }
 
+// Arm joints near `q` that put the marker's centre at `position` (base frame) and keep the
+// rotation it has at q: damped Gauss-Newton on the forward kinematics. How a plan moves the
+// marker across the image of a camera that cannot turn (on a stand). nullopt when it does not
+// converge (out of reach).
+std::optional<std::vector<double>> placeMarker(const RobotModel& model, std::vector<double> q, const Eigen::Vector3d& position) {
+  const Eigen::Matrix3d rotation = model.marker(q).linear();
+  auto residual = [&](const std::vector<double>& x) {
+    const Eigen::Isometry3d m = model.marker(x);
+    Eigen::Matrix<double, 6, 1> r;
+    r.head<3>() = m.translation() - position;
+    r.tail<3>() = 0.1 * logRotation(rotation.transpose() * m.linear());  // 1 rad weighs as 0.1 m
+    return r;
+  };
+  const int n = static_cast<int>(q.size());
+  for (int it = 0; it < 100; ++it) {
+    const Eigen::Matrix<double, 6, 1> r = residual(q);
+    if (r.norm() < 1e-10) break;
+    Eigen::MatrixXd jacobian(6, n);
+    for (int j = 0; j < n; ++j) {
+      std::vector<double> x = q;
+      x[j] += 1e-7;
+      jacobian.col(j) = (residual(x) - r) / 1e-7;
+    }
+    const Eigen::MatrixXd normal = jacobian.transpose() * jacobian + 1e-8 * Eigen::MatrixXd::Identity(n, n);
+    Eigen::VectorXd step = normal.ldlt().solve(-jacobian.transpose() * r);
+    if (!step.allFinite()) return std::nullopt;
+    if (step.norm() > 0.3) step *= 0.3 / step.norm();
+    for (int j = 0; j < n; ++j) q[j] += step[j];
+  }
+  if (!(residual(q).norm() < 1e-8)) return std::nullopt;
+  return q;
+}
+
 }  // namespace
 
 double angleBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
@@ -82,7 +116,8 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
   //   about different axes and any five move every identifiable joint;
   // - the head does not only centre the marker: it looks past it by a fraction of the field of
   //   view, so the marker is seen in the centre and towards each image corner, with the pan and
-  //   tilt spread that brings.
+  //   tilt spread that brings; a camera on a stand (a head without joints): the arm carries the
+  //   marker to those image positions, each repeat of an arm variation to another one.
   static const std::vector<std::vector<double>> variations_deg{
       {0, 0, 0, 0, 0, 0, 0},      {0, 0, 0, 0, 20, 0, 25},     {0, 12, 0, -12, 0, 18, 0},  {0, 0, 0, 0, -20, 0, -25},
       {0, -12, 0, 12, 0, -18, 0}, {10, 0, 14, 0, 0, 0, 16},    {-10, 0, -14, 0, 0, 0, -16}, {0, 8, 0, 8, 18, -12, 0},
@@ -119,6 +154,17 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
   };
   const double half_fov_x = cameras ? std::atan(d.image_width / 2.0 / cameras->left.K(0, 0)) : 0.0;
   const double half_fov_y = cameras ? std::atan(d.image_height / 2.0 / cameras->left.K(1, 1)) : 0.0;
+  // A head without joints (a camera on a stand) cannot aim: the arm moves the marker to the image
+  // position instead, at the depth the arm's variation gives, in the camera between the pair.
+  const bool head_aims = !d.head.joints.empty();
+  Eigen::Isometry3d centre_camera = model.leftCamera(std::vector<double>(d.head.joints.size(), 0.0));
+  centre_camera.translation() += centre_camera.linear() * Eigen::Vector3d(d.stereo_baseline / 2, 0, 0);
+  auto atImagePosition = [&](const std::vector<double>& arm, double fx, double fy) -> std::optional<std::vector<double>> {
+    const Eigen::Vector3d m = centre_camera.inverse() * model.marker(arm).translation();
+    if (!(m.z() > 0)) return std::nullopt;
+    const Eigen::Vector3d want(m.z() * std::tan(fx * half_fov_x), m.z() * std::tan(fy * half_fov_y), m.z());
+    return placeMarker(model, arm, centre_camera * want);
+  };
   for (int k = 0; k < n; ++k) {
     const auto& v = variations_deg[k % variations_deg.size()];
     // A repeat of an arm variation sees the marker at another image position.
@@ -128,6 +174,17 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
     for (double scale = 1.0; scale > 0.05; scale *= 0.7) {
       p.arm = d.arm_calibration_pose;
       for (size_t j = 0; j < p.arm.size() && j < v.size(); ++j) p.arm[j] += scale * v[j] * M_PI / 180.0;
+      if (!head_aims) {
+        for (double f = 1.0; f > 0.1; f *= 0.7) {
+          const auto placed = atImagePosition(p.arm, f * at.first, f * at.second);
+          if (placed && withinLimits(d.arm.joints, *placed) && visible({*placed, {}})) {
+            p.arm = *placed;
+            break;
+          }
+        }
+        if (withinLimits(d.arm.joints, p.arm) && visible(p)) break;
+        continue;
+      }
       const auto look = model.lookAt(model.marker(p.arm).translation(), {d.head_calibration_pose[0], d.head_calibration_pose[1]});
       p.head = {look[0], look[1]};
       for (double f = 1.0; f > 0.1; f *= 0.7) {

@@ -56,9 +56,10 @@ int calibrationPlan(const Options& flags) {
       const double oblique = std::acos(std::min(1.0, -m.linear().col(2).dot(m.translation().normalized())));
       std::printf("pose %2zu: arm [", k);
       for (double q : plan[k].arm) std::printf(" %6.1f", q * 180 / M_PI);
-      std::printf(" ] head [ %6.1f %6.1f ] deg; marker at (%4.0f, %4.0f) px, %.3f m, %4.1f deg oblique\n",
-                  plan[k].head[0] * 180 / M_PI, plan[k].head[1] * 180 / M_PI, uv.x(), uv.y(), m.translation().norm(),
-                  oblique * 180 / M_PI);
+      std::printf(" ] head [");  // empty for a camera on a stand
+      for (double q : plan[k].head) std::printf(" %6.1f", q * 180 / M_PI);
+      std::printf(" ] deg; marker at (%4.0f, %4.0f) px, %.3f m, %4.1f deg oblique\n", uv.x(), uv.y(),
+                  m.translation().norm(), oblique * 180 / M_PI);
     }
   }
   if (!o.computed()) {

@@ -127,7 +127,7 @@ void CalibrationPublisher::publishSampleMarkers(const Result& result) {
   }
   for (size_t i = 0; calibrated && i < result.samples.size(); ++i) {
     Sample s = result.samples[i];
-    if (s.head_q.size() != 2 || s.arm_q.size() != model_.description().arm.joints.size()) continue;
+    if (s.head_q.size() != model_.description().head.joints.size() || s.arm_q.size() != model_.description().arm.joints.size()) continue;
     solveSample(model_, s, fusion_, result.marker_offset);
     if (!s.valid) continue;
     const Eigen::Isometry3d pose = result.fixed_point * headChain(*calibrated, s.head_q) * s.marker_in_left;

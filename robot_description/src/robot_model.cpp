@@ -181,7 +181,11 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
     d.arm.link_prefix = arm["link_prefix"] ? arm["link_prefix"].as<std::string>() : "arm_link_";
     d.head.link_prefix = head["link_prefix"] ? head["link_prefix"].as<std::string>() : "head_link_";
     d = withUrdfKinematics(d, urdf, links);
-    if (d.head.joints.size() != 2) throw error(w + ": head.tip_link", "a pan-tilt head has exactly 2 joints");
+    // A pan-tilt head, or cameras on a stand (no joint between base_frame and tip_link: eye-to-hand).
+    if (d.head.joints.size() != 2 && !d.head.joints.empty()) {
+      throw error(w + ": head.tip_link", "a head has 2 joints (pan, tilt) or none (a camera on a stand), not " +
+                                             std::to_string(d.head.joints.size()));
+    }
     d.marker_size = number(marker, "size", w + ": arm.marker");
     if (!(d.marker_size > 0)) throw error(w + ": arm.marker.size", "must be positive");
     const std::string ws = w + ": head.stereo_camera";
@@ -440,6 +444,7 @@ Eigen::Isometry3d RobotModel::leftToRight() const {
 Eigen::Isometry3d RobotModel::rightCamera(const std::vector<double>& q) const { return leftCamera(q) * leftToRight(); }
 
 std::array<double, 2> RobotModel::lookAt(const Eigen::Vector3d& target, std::array<double, 2> start) const {
+  if (d_.head.joints.size() != 2) throw std::logic_error(d_.source + ": only a pan-tilt head can look at a point");
   Eigen::Isometry3d centre_in_left = Eigen::Isometry3d::Identity();
   centre_in_left.translation() = Eigen::Vector3d(d_.stereo_baseline / 2, 0, 0);
   // Residual: the target's direction in the centre camera, (x/z, y/z); zero when centred.

@@ -114,9 +114,7 @@ KinematicChain UrdfKinematics::chain(const std::string& root, const std::string&
     out.joints.push_back(c);
   }
   flush();
-  if (out.joints.empty()) {
-    throw std::runtime_error(data_->source + ": the chain from link '" + root + "' to link '" + tip + "' has no moving joint");
-  }
+  out.tip_link = tip;
   return out;
 }
 
@@ -140,6 +138,10 @@ RobotDescription withUrdfKinematics(RobotDescription d, const UrdfKinematics& ur
     c.link_prefix = prefix;
   };
   chain(d.arm, links.arm_tip);
+  if (d.arm.joints.empty()) {
+    throw std::runtime_error(urdf.source() + ": the arm chain from link '" + links.base + "' to link '" + links.arm_tip +
+                             "' has no moving joint");
+  }
   chain(d.head, links.head_tip);
   auto fixed = [&](FixedFrame& f, const std::string& parent, const std::string& link) {
     f.frame = link;

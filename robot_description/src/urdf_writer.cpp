@@ -116,6 +116,17 @@ std::string commentText(const std::string& note) {
   return text;
 }
 
+// The fixed joint that places a chain's link 0: the one to the link its first moving joint hangs
+// from; for a chain of fixed joints only (a camera on a stand), the one to its tip link.
+XMLElement* mountJoint(UrdfDocument& urdf, const KinematicChain& chain) {
+  if (chain.joints.empty()) {
+    if (chain.tip_link.empty()) throw std::runtime_error("a chain without joints and without a tip link has no mount joint");
+    return urdf.fixedJointTo(chain.tip_link, "the tip link of a chain without joints");
+  }
+  return urdf.fixedJointTo(UrdfDocument::linkOf(urdf.joint(chain.joints.front().name), "parent"),
+                           "the link joint '" + chain.joints.front().name + "' hangs from");
+}
+
 }  // namespace
 
 std::string urdfFileOf(const RobotDescription& d) {
@@ -134,10 +145,8 @@ UrdfJoint urdfChainMountJoint(const RobotDescription& d, const KinematicChain& c
   std::string file;
   const std::string xml = ownUrdf(d, file);
   if (xml.empty()) return {chain.link_prefix + "0_mount", d.base_frame, chain.link_prefix + "0"};
-  if (chain.joints.empty()) throw std::runtime_error(d.source + ": a chain without joints has no mount joint");
   UrdfDocument urdf(xml, file);
-  const std::string link0 = UrdfDocument::linkOf(urdf.joint(chain.joints.front().name), "parent");
-  return urdf.describe(urdf.fixedJointTo(link0, "the link joint '" + chain.joints.front().name + "' hangs from"));
+  return urdf.describe(mountJoint(urdf, chain));
 }
 
 UrdfJoint urdfFixedJoint(const RobotDescription& d, const std::string& link) {
@@ -160,8 +169,7 @@ std::string writeUrdf(const RobotDescription& nominal, const RobotDescription& c
                                " joints, the URDF's " + std::to_string(n->joints.size()));
     }
     if (!same(n->mount, c->mount)) {
-      XMLElement* j = urdf.fixedJointTo(UrdfDocument::linkOf(urdf.joint(n->joints.front().name), "parent"),
-                                        "the link joint '" + n->joints.front().name + "' hangs from");
+      XMLElement* j = mountJoint(urdf, *n);
       urdf.setOrigin(j, urdf.origin(j) * n->mount.inverse() * c->mount);
     }
     for (size_t i = 0; i < n->joints.size(); ++i) {

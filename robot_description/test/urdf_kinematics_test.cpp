@@ -3,7 +3,11 @@
 // prismatic joint gives KDL's own; what does not fit is named.
 #include "robot_description/urdf_kinematics.h"
 
+#include <cstdlib>
+#include <fstream>
 #include <random>
+
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -183,7 +187,16 @@ TEST(UrdfKinematics, WhatDoesNotFitIsNamed) {
   EXPECT_EQ(urdf.rootLink(), "base_link");
   EXPECT_NE(messageOf([&] { urdf.chain("base_link", "no_such_link"); }).find("friend.urdf: the URDF has no link 'no_such_link'"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { urdf.chain("arm_link_7", "tcp"); }).find("has no moving joint"), std::string::npos);
+  // Fixed joints only: a chain without joints whose mount is the whole way (a camera on a stand).
+  const KinematicChain fixed_only = urdf.chain("arm_link_7", "tcp");
+  EXPECT_TRUE(fixed_only.joints.empty());
+  EXPECT_EQ(fixed_only.tip_link, "tcp");
+  EXPECT_TRUE(fixed_only.mount.isApprox(urdf.fixedTransform("arm_link_7", "tcp"), 1e-12));
+  UrdfLinks no_arm = generatedUrdfLinks(d);
+  no_arm.arm_tip = no_arm.base;  // an arm must move
+  EXPECT_NE(messageOf([&] { withUrdfKinematics(d, urdf, no_arm); })
+                .find("friend.urdf: the arm chain from link 'base_link' to link 'base_link' has no moving joint"),
+            std::string::npos);
   EXPECT_NE(messageOf([&] { urdf.fixedTransform("arm_link_6", "tcp"); }).find("joint 'arm_joint_7' moves between them"),
             std::string::npos);
   UrdfLinks links = generatedUrdfLinks(d);
@@ -191,4 +204,73 @@ TEST(UrdfKinematics, WhatDoesNotFitIsNamed) {
   EXPECT_NE(messageOf([&] { withUrdfKinematics(d, urdf, links); })
                 .find("link 'stereo_right_optical_frame' must be link 'head_link_2' moved along its x axis"),
             std::string::npos);
+}
+
+TEST(UrdfKinematics, ACameraOnAStandIsAHeadWithoutJoints) {
+  // config/ur_stand: a UR5-like arm and a stereo camera on a stand; the head chain base_link ->
+  // camera_mount_link has fixed joints only, so its mount (the fixed point) is the whole way.
+  const RobotDescription d = loadRobotDescription("config/ur_stand/robot.yaml");
+  ASSERT_EQ(d.arm.names(), (std::vector<std::string>{"shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint",
+                                                     "wrist_1_joint", "wrist_2_joint", "wrist_3_joint"}));
+  EXPECT_TRUE(d.head.joints.empty());
+  EXPECT_EQ(d.head.tip_link, "camera_mount_link");
+  EXPECT_TRUE(d.head_calibration_pose.empty());
+  EXPECT_TRUE(d.head_home.empty());
+  EXPECT_NEAR(d.stereo_baseline, 0.12, 1e-12);
+  const UrdfKinematics urdf = UrdfKinematics::fromFile("config/ur_stand/robot.urdf");
+  expectSame(d.head.mount, urdf.fixedTransform("base_link", "camera_mount_link"), 1e-12, "camera mount");
+  KDL::Tree tree;
+  ASSERT_TRUE(kdl_parser::treeFromFile("config/ur_stand/robot.urdf", tree));
+  KDL::Chain to_target, to_left;
+  ASSERT_TRUE(tree.getChain("base_link", "target_mount_link", to_target));
+  ASSERT_TRUE(tree.getChain("base_link", "stereo_left_optical_frame", to_left));
+  const RobotModel model(d);
+  expectSame(model.leftCamera({}), kdlEnd(to_left, {}), 1e-9, "left camera");
+  std::mt19937 rng(4);
+  for (int trial = 0; trial < 50; ++trial) {
+    const auto q = randomPose(d.arm, rng);
+    expectSame(model.marker(q), kdlEnd(to_target, q), 1e-9, "target, trial " + std::to_string(trial));
+  }
+  // What a calibration estimates: the camera mount, the target offset, arm joints 2..5 (the
+  // first turns like the mount, the last like the target); no head joint.
+  const FreeParams f = freeParams(d);
+  EXPECT_TRUE(f.fixed_point && f.target_offset);
+  EXPECT_EQ(f.arm, (std::vector<size_t>{1, 2, 3, 4}));
+  EXPECT_TRUE(f.head.empty());
+  // A camera that cannot turn cannot look at a point.
+  EXPECT_NE(messageOf([&] { model.lookAt(Eigen::Vector3d(0.5, 0, 0.3)); }).find("only a pan-tilt head can look at a point"),
+            std::string::npos);
+  // Its calibration pose shows the target's face to both cameras about 1 m away, in the image.
+  const Eigen::Isometry3d target = model.marker(d.arm_calibration_pose);
+  for (const Eigen::Isometry3d& cam : {model.leftCamera({}), model.rightCamera({})}) {
+    const Eigen::Isometry3d in_cam = cam.inverse() * target;
+    const Eigen::Vector3d c = in_cam.translation();
+    EXPECT_GT(c.z(), 0.9);
+    EXPECT_LT(c.z(), 1.1);
+    EXPECT_LT(std::abs(1400 * c.x() / c.z()), 200) << c.transpose();
+    EXPECT_LT(std::abs(1400 * c.y() / c.z()), 150) << c.transpose();
+    EXPECT_GT(in_cam.linear().col(2).dot(-c.normalized()), std::cos(20 * M_PI / 180));
+  }
+}
+
+TEST(UrdfKinematics, AHeadOfOneJointIsRefused) {
+  // The UR arm's URDF with the head ending one joint after the base: neither pan-tilt nor a stand.
+  std::ifstream in("config/ur_stand/robot.urdf");
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string stand = "<parent link=\"base_link\"/><child link=\"camera_stand_link\"/>";
+  ASSERT_NE(urdf.find(stand), std::string::npos);
+  urdf.replace(urdf.find(stand), stand.size(), "<parent link=\"shoulder_link\"/><child link=\"camera_stand_link\"/>");
+  const std::string dir = "/tmp/ur_stand_one_joint_" + std::to_string(::getpid());
+  ASSERT_EQ(system(("mkdir -p " + dir).c_str()), 0);
+  std::ofstream(dir + "/robot.urdf") << urdf;
+  std::ifstream yaml_in("config/ur_stand/robot.yaml");
+  std::string yaml((std::istreambuf_iterator<char>(yaml_in)), std::istreambuf_iterator<char>());
+  for (const std::string info : {"../example/stereo_left.yaml", "../example/stereo_right.yaml"}) {
+    yaml.replace(yaml.find(info), info.size(), "stereo.yaml");  // not read by the loader
+  }
+  std::ofstream(dir + "/robot.yaml") << yaml;
+  EXPECT_NE(messageOf([&] { loadRobotDescription(dir + "/robot.yaml"); })
+                .find("robot.yaml: head.tip_link: a head has 2 joints (pan, tilt) or none (a camera on a stand), not 1"),
+            std::string::npos)
+      << messageOf([&] { loadRobotDescription(dir + "/robot.yaml"); });
 }

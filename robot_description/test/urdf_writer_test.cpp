@@ -95,3 +95,33 @@ TEST(UrdfWriter, ALinkThatNoFixedJointPlacesIsNamed) {
         << e.what();
   }
 }
+
+TEST(UrdfWriter, ACameraOnAStandTakesItsMountIntoTheJointToTheCameraMount) {
+  // A head without joints: its mount (the fixed point) goes into the fixed joint whose child is
+  // the chain's tip link, the stand's camera mount.
+  const auto nominal = loadRobotDescription("config/ur_stand/robot.yaml");
+  const UrdfJoint mount = urdfChainMountJoint(nominal, nominal.head);
+  EXPECT_EQ(mount.name, "camera_mount_joint");
+  EXPECT_EQ(mount.parent, "camera_stand_link");
+  EXPECT_EQ(mount.child, "camera_mount_link");
+  RobotDescription changed = nominal;
+  changed.head.mount = fromXyzRpy({0.004, -0.003, 0.003}, {0.005, -0.004, 0.005}) * nominal.head.mount;
+  changed.arm.joints[2].offset += 0.001;
+  const std::string text = writeUrdf(nominal, changed, "ignored");
+  UrdfLinks links;
+  links.base = "base_link";
+  links.arm_tip = "wrist_3_link";
+  links.tool = "tool0";
+  links.marker = "target_mount_link";
+  links.hand_camera = "wrist_camera_optical_frame";
+  links.ft_sensor = "ft_frame";
+  links.head_tip = "camera_mount_link";
+  links.left_camera = "stereo_left_optical_frame";
+  links.right_camera = "stereo_right_optical_frame";
+  const RobotModel back(withUrdfKinematics(nominal, UrdfKinematics(text, "written URDF"), links)), want(changed);
+  EXPECT_TRUE(back.description().head.joints.empty());
+  expectSame(back.headBase(), want.headBase(), "camera mount");
+  expectSame(back.leftCamera({}), want.leftCamera({}), "left camera");
+  const std::vector<double> arm{0.1, -1.1, 1.9, 1.7, -0.9, -2.7};
+  expectSame(back.marker(arm), want.marker(arm), "target");
+}

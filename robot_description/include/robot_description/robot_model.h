@@ -93,7 +93,8 @@ Eigen::Vector3d rpyOf(const Eigen::Matrix3d& r);
 struct KinematicChain {
   std::string link_prefix;        // link i is link_prefix + i; link 0 is the mount's child
   Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // base -> link 0
-  std::vector<ChainJoint> joints;
+  std::vector<ChainJoint> joints;  // none: a chain of fixed joints (a camera on a stand), all mount
+  std::string tip_link;            // a URDF chain's last link as the URDF names it ("" for DH)
   std::vector<std::string> names() const;
   // Frames of links 0..n in the base frame (n + 1 entries). Throws std::invalid_argument if q has
   // the wrong size or a value is not finite.
@@ -127,6 +128,7 @@ struct RobotDescription {
   // head last link -> its optical frame, and its camera_info file (absolute path).
   FixedFrame mono_camera;
   std::string mono_camera_info;
+  // Head poses are empty for a head without joints (cameras on a stand, eye-to-hand).
   std::vector<double> arm_calibration_pose, arm_home, head_calibration_pose, head_home;
   // What a calibration estimates (key `free_params`, as Fetch's robot_calibration names them;
   // freeParams below); empty: everything it can.
@@ -154,7 +156,8 @@ RobotDescription loadRobotDescription(const std::string& path);
 // pan-tilt stereo head), found with ros::package::getPath; for tests and docs.
 std::string exampleRobotDescriptionPath();
 
-// Forward kinematics of a description. Arm joint vector: 7 angles; head: pan, tilt.
+// Forward kinematics of a description. Joint vectors: one angle per chain joint (a head without
+// joints: empty).
 class RobotModel {
  public:
   explicit RobotModel(RobotDescription description) : d_(std::move(description)) {}
@@ -173,7 +176,7 @@ class RobotModel {
 
   // Pan and tilt (rad) that put `target` (base frame) on the optical axis of the camera centred
   // between the two stereo cameras ("look at the TCP", paper Fig. 3.1). Iterative, from the
-  // given start; clamps to the joint limits.
+  // given start; clamps to the joint limits. Throws std::logic_error for a head without joints.
   std::array<double, 2> lookAt(const Eigen::Vector3d& target, std::array<double, 2> start = {0, 0}) const;
 
  private:

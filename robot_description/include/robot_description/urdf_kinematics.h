@@ -26,8 +26,9 @@ class UrdfKinematics {
   // The serial chain from link `root` to link `tip`: the fixed joints before the first moving
   // joint are its mount (so the mount's child is the first moving joint's parent link), each
   // moving joint one ChainJoint (origin, axis, and as its tip the fixed joints up to the next
-  // moving one), limits and velocity from the URDF (a continuous joint: unlimited). Throws naming
-  // the source and the links when there is no such chain or it has no moving joint.
+  // moving one), limits and velocity from the URDF (a continuous joint: unlimited); tip_link is
+  // `tip`. Fixed joints only (a camera on a stand): no joints, root -> tip is the mount. Throws
+  // naming the source and the links when there is no such chain.
   KinematicChain chain(const std::string& root, const std::string& tip) const;
   // root -> tip through fixed joints only; throws naming the moving joint between them.
   Eigen::Isometry3d fixedTransform(const std::string& root, const std::string& tip) const;

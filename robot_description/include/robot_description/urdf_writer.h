@@ -18,7 +18,8 @@ std::string urdfFileOf(const RobotDescription& description);
 struct UrdfJoint {
   std::string name, parent, child;  // the joint and its parent and child links
 };
-// The fixed joint that places a chain's link 0 (for the head: the fixed point) in the URDF that
+// The fixed joint that places a chain's link 0 (for the head: the fixed point; a chain without
+// joints, a camera on a stand: the fixed joint to its tip link) in the URDF that
 // writeUrdf writes, and the fixed joint whose child is link `link` (e.g. the marker's frame).
 // Throws naming the URDF and the link when there is none.
 UrdfJoint urdfChainMountJoint(const RobotDescription& description, const KinematicChain& chain);
