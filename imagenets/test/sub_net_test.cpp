@@ -579,6 +579,48 @@ links: [c.value -> loop.target]
   }
 }
 
+// One value replaced by another wherever blocks of one type hold it, sub-nets included (e.g. a
+// robot's controller action in place of the default name the nets were written with).
+TEST(SubNet, AValueIsReplacedWhereBlocksOfTheTypeHoldIt) {
+  write("level3.yaml", kDouble);  // its scale: gain 2
+  write("level2.yaml", kLevel2);
+  write("replace_tree.yaml", R"(
+blocks:
+  c: {type: test/Constant, properties: {value: 3}}
+  sub: {type: imagenets/SubNet, properties: {net: level2.yaml}}
+  after: {type: test/Scale, properties: {gain: 2, offset: 1}}
+  other: {type: test/Scale, properties: {gain: 3}}
+links: [c.value -> sub.x, sub.y -> after.in, after.out -> other.in]
+)");
+  auto e = loadFile("replace_tree.yaml");
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("other.out")->data, 39.0);  // (3 * 2 * 2 + 1) * 3
+  // Compared as values: "2.0" is the 2 written in the files; the block holding 3 keeps it.
+  EXPECT_EQ(replacePropertyValueInNetTree(*e, "test/Scale", "gain", "2.0", "5"),
+            (std::vector<std::string>{"sub/inner/scale", "after"}));
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("other.out")->data, 228.0);  // (3 * 5 * 5 + 1) * 3
+  EXPECT_TRUE(replacePropertyValueInNetTree(*e, "test/Scale", "gain", "2", "7").empty());  // none holds 2 now
+  // Another type's blocks are left alone, whatever they hold.
+  EXPECT_TRUE(replacePropertyValueInNetTree(*e, "test/Constant", "gain", "5", "7").empty());
+  EXPECT_TRUE(replacePropertyValueInNetTree(*e, "test/Constant", "value", "4", "7").empty());
+  EXPECT_EQ(replacePropertyValueInNetTree(*e, "test/Constant", "value", "3", "1"), (std::vector<std::string>{"c"}));
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("other.out")->data, 78.0);  // (1 * 5 * 5 + 1) * 3
+  // A value not valid there names the block and the property; nothing is changed.
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"5", "not a number"}, {"five", "2"}}) {
+    try {
+      replacePropertyValueInNetTree(*e, "test/Scale", "gain", from, to);
+      ADD_FAILURE() << from << " -> " << to;
+    } catch (const NetError& err) {
+      EXPECT_NE(std::string(err.what()).find("gain"), std::string::npos) << err.what();
+      EXPECT_NE(std::string(err.what()).find("block 'scale'"), std::string::npos) << err.what();
+    }
+  }
+  ASSERT_TRUE(e->run().ok());
+  EXPECT_DOUBLE_EQ(e->output<std_msgs::Float64>("other.out")->data, 78.0);
+}
+
 TEST(SubNet, GraphDrawsSubNetsAsClustersAndFeedbackDashed) {
   write("double.yaml", kDouble);
   write("drawn.yaml", R"(

@@ -11,6 +11,7 @@
 #include "imagenets/package_file.h"
 #include "imagenets_calibration/bag_samples.h"
 #include "imagenets_calibration/calibration_msgs.h"
+#include "imagenets_calibration/robot_interfaces.h"
 
 namespace imagenets_calibration {
 
@@ -20,7 +21,10 @@ BagCalibration calibrateFromBag(const BagCalibrationOptions& o) {
   if (!boost::filesystem::exists(o.bag)) throw std::runtime_error(o.bag + ": no such bag file");
   // The bag's samples first: a bag that lacks a topic says so before any net runs (the plan and
   // the sample blocks then find them read, with these settings).
+  const RobotModel model(robot_description::loadRobotDescription(o.description));
   BagSampleSettings bag_settings;
+  // The stereo pair's topics as the robot's config names them (robot_interfaces.h); --set wins.
+  if (!model.description().stereo_namespace.empty()) bag_settings.camera = model.description().stereo_namespace;
   auto number = [](const std::pair<std::string, std::string>& s) {
     try {
       size_t end = 0;
@@ -38,7 +42,6 @@ BagCalibration calibrateFromBag(const BagCalibrationOptions& o) {
     if (s.first == "max_stereo_offset") bag_settings.max_stereo_offset = number(s);
     if (s.first == "max_joint_state_age") bag_settings.max_joint_state_age = number(s);
   }
-  const RobotModel model(robot_description::loadRobotDescription(o.description));
   BagCalibration out;
   out.samples = readBagSamples(boost::filesystem::absolute(o.bag).string(), sampleJoints(model), bag_settings)->report;
   const std::string net = o.net.empty() ? imagenets::packageFile("imagenets_calibration", "config/nets/calibration.yaml") : o.net;
@@ -58,6 +61,7 @@ BagCalibration calibrateFromBag(const BagCalibrationOptions& o) {
     if (set.empty()) throw std::runtime_error(net + ": no block of the net or its sub-nets has a property '" + property + "'");
   };
   setAll("description", boost::filesystem::absolute(o.description).string(), true);
+  applyRobotInterfaces(model.description(), exec);
   for (const auto& s : o.settings) setAll(s.first, s.second, false);
   exec.setPropertyText("plan", "method", o.method);
   exec.setPropertyText("plan", "bag", boost::filesystem::absolute(o.bag).string());

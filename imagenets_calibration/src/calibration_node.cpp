@@ -18,6 +18,7 @@
 #include "imagenets/vision/target.h"
 #include "imagenets_calibration/bag_samples.h"
 #include "imagenets_calibration/calibration_msgs.h"
+#include "imagenets_calibration/robot_interfaces.h"
 
 namespace imagenets_calibration {
 namespace {
@@ -98,6 +99,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   const std::string joint_states = pnh_.param<std::string>("joint_states", "joint_states");
   publisher_ = std::make_unique<CalibrationPublisher>(nh_, pnh_, model_, marker_.size, fusion_, child_frame_, joint_states);
   loadNetsReporting();
+  checkControllers();
   setUpRecording(joint_states);
   publishStartupCalibration();
   startServices();
@@ -139,7 +141,8 @@ void CalibrationNode::setUpRecording(const std::string& joint_states) {
   record_bag_ = pnh_.param<std::string>("record_bag", "");
   if (record_bag_.empty()) return;
   record_bag_ = boost::filesystem::absolute(record_bag_).string();
-  record_camera_topic_ = nh_.resolveName(pnh_.param<std::string>("record_camera", "stereo"));
+  const std::string& stereo = model_.description().stereo_namespace;
+  record_camera_topic_ = nh_.resolveName(pnh_.param<std::string>("record_camera", stereo.empty() ? "stereo" : stereo));
   record_joint_states_topic_ = nh_.resolveName(joint_states);
   tf_sub_ = nh_.subscribe<tf2_msgs::TFMessage>("/tf", 100, [this](const tf2_msgs::TFMessageConstPtr& m) { onTf(m, false); });
   tf_static_sub_ = nh_.subscribe<tf2_msgs::TFMessage>("/tf_static", 100,
@@ -190,6 +193,19 @@ void CalibrationNode::loadNets(const std::string& net, const std::string& replay
   replay_ = std::make_unique<imagenets::Executor>(imagenets::Net::build(replay_spec));
   replay_net_ = std::make_unique<CalibrationNetInterface>(*replay_);
   setDescriptionAndTarget(net);
+  // The robot's controllers and camera topics its description names, in place of the nets' own.
+  for (const std::string& line : applyRobotInterfaces(model_.description(), *live_)) {
+    ROS_INFO("%s: %s", live_->net().origin().c_str(), line.c_str());
+  }
+  applyRobotInterfaces(model_.description(), *replay_);
+}
+
+void CalibrationNode::checkControllers() {
+  // Said at once rather than after a move block's server_timeout in the first calibration (which
+  // then fails naming the action too); the node serves on: the controller may start later.
+  for (const std::string& missing : missingControllers(model_.description(), pnh_.param("server_timeout", 10.0))) {
+    ROS_ERROR("%s: %s", ros::this_node::getName().c_str(), missing.c_str());
+  }
 }
 
 void CalibrationNode::setDescriptionAndTarget(const std::string& net) {

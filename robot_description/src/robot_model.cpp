@@ -9,6 +9,7 @@
 
 #include <boost/filesystem.hpp>
 #include <ros/package.h>
+#include <ros/names.h>
 #include <ros/ros.h>
 #include <yaml-cpp/yaml.h>
 
@@ -74,6 +75,27 @@ void readFreeParams(const YAML::Node& root, RobotDescription& d) {
   freeParams(d);
 }
 
+// An interface's name (key `key` of `node`, at `where`) into `out`: a string that is a valid ROS
+// graph name; absent: "" (the nets' own name holds).
+void readInterfaceName(const YAML::Node& node, const std::string& key, const std::string& where, std::string& out) {
+  if (!node.IsMap() || !node[key]) return;
+  const YAML::Node v = node[key];
+  if (!v.IsScalar() || v.Scalar().empty()) {
+    throw error(where + "." + key, "expected a ROS name (e.g. arm_controller/follow_joint_trajectory), got '" +
+                                       YAML::Dump(v) + "'");
+  }
+  std::string why;
+  if (!ros::names::validate(v.Scalar(), why)) throw error(where + "." + key, "'" + v.Scalar() + "' is no valid ROS name: " + why);
+  out = v.Scalar();
+}
+
+// The keys naming the robot's interfaces (RobotDescription::arm_controller, ...), in either form.
+void readInterfaces(const YAML::Node& root, const std::string& w, RobotDescription& d) {
+  readInterfaceName(root["arm"], "controller", w + ": arm", d.arm_controller);
+  readInterfaceName(root["head"], "controller", w + ": head", d.head_controller);
+  if (root["head"]) readInterfaceName(root["head"]["stereo_camera"], "namespace", w + ": head.stereo_camera", d.stereo_namespace);
+}
+
 std::string& urdfFileForAll() {
   static std::string path;
   return path;
@@ -133,13 +155,14 @@ void checkUrdfFormKeys(const YAML::Node& root, const std::string& w) {
   onlyKnownKeys(root, {"urdf", "name", "base_frame", "free_params", "arm", "head"}, w);
   const YAML::Node arm = need(root, "arm", w), head = need(root, "head", w);
   onlyKnownKeys(arm, {"tip_link", "tool_link", "marker", "hand_camera_link", "ft_sensor_link", "calibration_pose_deg",
-                      "home_deg", "link_prefix"},
+                      "home_deg", "link_prefix", "controller"},
                 w + ": arm");
   onlyKnownKeys(need(arm, "marker", w + ": arm"), {"link", "size"}, w + ": arm.marker");
-  onlyKnownKeys(head, {"tip_link", "stereo_camera", "mono_camera", "calibration_pose_deg", "home_deg", "link_prefix"},
+  onlyKnownKeys(head, {"tip_link", "stereo_camera", "mono_camera", "calibration_pose_deg", "home_deg", "link_prefix",
+                       "controller"},
                 w + ": head");
   onlyKnownKeys(need(head, "stereo_camera", w + ": head"),
-                {"left_link", "right_link", "width", "height", "left_camera_info", "right_camera_info"},
+                {"left_link", "right_link", "width", "height", "left_camera_info", "right_camera_info", "namespace"},
                 w + ": head.stereo_camera");
   if (head["mono_camera"]) onlyKnownKeys(head["mono_camera"], {"link", "camera_info"}, w + ": head.mono_camera");
 }
@@ -198,6 +221,7 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
     d.arm_home = poseDeg(arm, "home_deg", w + ": arm", d.arm);
     d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
     d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
+    readInterfaces(root, w, d);
     readFreeParams(root, d);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());
@@ -354,6 +378,7 @@ RobotDescription loadRobotDescription(const std::string& path) {
     d.right_camera_info = rel("right_camera_info");
     d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
     d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
+    readInterfaces(root, w, d);
     readFreeParams(root, d);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
+#include <console_bridge/console.h>
 #include <kdl/chain.hpp>
 #include <kdl/tree.hpp>
 #include <kdl_parser/kdl_parser.hpp>
@@ -24,6 +26,26 @@ Eigen::Isometry3d toEigen(const KDL::Frame& f) {
 }
 
 Eigen::Vector3d toEigen(const KDL::Vector& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+
+// What the urdf parser says while it parses (through console_bridge, where it writes its reasons):
+// kept for the error instead of printed apart from it. One parse at a time: the handler is global.
+class ParserMessages : public console_bridge::OutputHandler {
+ public:
+  ParserMessages() : lock_(mutex()) { console_bridge::useOutputHandler(this); }
+  ~ParserMessages() override { console_bridge::restorePreviousOutputHandler(); }
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) text_ += (text_.empty() ? "" : "; ") + text;
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
+  std::string text_;
+};
 
 bool isPrismatic(KDL::Joint::JointType t) {
   return t == KDL::Joint::TransAxis || t == KDL::Joint::TransX || t == KDL::Joint::TransY || t == KDL::Joint::TransZ;
@@ -50,7 +72,14 @@ struct UrdfKinematics::Data {
 
 UrdfKinematics::UrdfKinematics(const std::string& urdf_xml, const std::string& source) : data_(std::make_unique<Data>()) {
   data_->source = source;
-  if (!data_->model.initString(urdf_xml)) throw std::runtime_error(source + ": not a valid URDF (see the urdf parser's message above)");
+  std::string why;
+  bool parsed = false;
+  {
+    ParserMessages messages;
+    parsed = data_->model.initString(urdf_xml);
+    why = messages.text();
+  }
+  if (!parsed) throw std::runtime_error(source + ": not a valid URDF: " + (why.empty() ? "the urdf parser refused it" : why));
   if (!kdl_parser::treeFromUrdfModel(data_->model, data_->tree)) {
     throw std::runtime_error(source + ": KDL cannot build a kinematic tree from this URDF");
   }

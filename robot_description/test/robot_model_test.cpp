@@ -220,12 +220,39 @@ TEST(RobotModel, BadCalibrationConfigsAreClearErrors) {
   std::tie(path, what) = errorOf(replaced("tip_link: flange", "tip_link: no_such_flange"));
   EXPECT_NE(what.find("no_such_flange"), std::string::npos) << what;
   EXPECT_NE(what.find(dir + "robot.urdf"), std::string::npos) << what;
-  // A URDF that does not parse.
+  // An interface's name that is no string, or no valid ROS name.
+  std::tie(path, what) = errorOf(replaced("  tip_link: flange", "  tip_link: flange\n  controller: [a, b]"));
+  EXPECT_NE(what.find(path + ": arm.controller: expected a ROS name"), std::string::npos) << what;
+  std::tie(path, what) = errorOf(replaced("    left_link:", "    namespace: 'stereo pair'\n    left_link:"));
+  EXPECT_NE(what.find(path + ": head.stereo_camera.namespace: 'stereo pair' is no valid ROS name"), std::string::npos)
+      << what;
+  std::tie(path, what) = errorOf(replaced("  tip_link: head_tilt_link", "  tip_link: head_tilt_link\n  controler: x"));
+  EXPECT_NE(what.find(path + ": head: unknown key 'controler' (known: "), std::string::npos) << what;
+  // A URDF that does not parse: the file and the parser's own reason.
   const std::string broken = writeTemp("<robot name='cut short'><link name='base_link'/><joint");
   useUrdfFile(broken);
   std::tie(path, what) = errorOf(config);
   EXPECT_NE(what.find(broken), std::string::npos) << what;
+  EXPECT_NE(what.find(": not a valid URDF: Failed to read Element name"), std::string::npos) << what;  // tinyxml2's
   std::remove(broken.c_str());
   useUrdfFile("");
+}
+
+// The robot's interfaces in its calibration config: read when named, empty (the nets' own) when not.
+TEST(RobotModel, ACalibrationConfigNamesTheRobotsControllersAndCameraTopics) {
+  const std::string dir = ros::package::getPath("robot_description") + "/config/";
+  useUrdfFile(dir + "mobile_manipulator/robot.urdf");
+  const RobotDescription d = loadRobotDescription(dir + "mobile_manipulator/calibration.yaml");
+  useUrdfFile("");
+  EXPECT_EQ(d.arm_controller, "arm_controller/follow_joint_trajectory");
+  EXPECT_EQ(d.head_controller, "head_controller/follow_joint_trajectory");
+  EXPECT_EQ(d.stereo_namespace, "stereo");
+  EXPECT_EQ(d.arm.joints.size(), 7u);
+  EXPECT_EQ(d.mono_camera.frame, "head_camera_rgb_optical_frame");
+  // The same robot with its URDF named (robot.yaml) and FRIEND's DH form name none.
+  for (const std::string& file : {dir + "mobile_manipulator/robot.yaml", dir + "example/robot.yaml"}) {
+    const RobotDescription other = loadRobotDescription(file);
+    EXPECT_EQ(other.arm_controller + other.head_controller + other.stereo_namespace, "") << file;
+  }
 }
 

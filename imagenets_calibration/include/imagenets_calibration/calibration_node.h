@@ -32,9 +32,12 @@
 //   joint_states, record_bag (a rosbag to record each live calibration's samples in: per sample the
 //   stereo pair, both camera_info and the joint readings it used, and tf / tf_static while it runs;
 //   written whole on success, a failed run leaves the previous bag as it was: bag_recorder.h),
-//   record_camera (the camera namespace the bag names, "stereo"). The acquisition's
-//   settings (speed, timeouts, settling, camera namespace) are properties of the sample net's
-//   blocks: use ~net for a net with other values.
+//   record_camera (the camera namespace the bag names; default the description's stereo
+//   namespace, else "stereo"), server_timeout (s the start-up waits for the controllers the
+//   description names; 10). The robot's controllers and stereo namespace come from its
+//   description (robot_interfaces.h: set on the nets at start-up; a named controller without a
+//   server is an error in the log naming it); the acquisition's other settings (speed, timeouts,
+//   settling) are properties of the sample net's blocks: use ~net for a net with other values.
 #pragma once
 
 #include <atomic>
@@ -91,6 +94,8 @@ class CalibrationNode {
   // Loads ~net (and its replay twin); a bad net is reported and every request answers with it.
   void loadNetsReporting();
   void setUpRecording(const std::string& joint_states);
+  // Says at start-up which controllers the description names that no server offers.
+  void checkControllers();
   // The last saved calibration (or a replayed file, or the nominal frame) published at start-up.
   void publishStartupCalibration();
   void startServices();

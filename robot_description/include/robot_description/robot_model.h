@@ -130,6 +130,11 @@ struct RobotDescription {
   std::string mono_camera_info;
   // Head poses are empty for a head without joints (cameras on a stand, eye-to-hand).
   std::vector<double> arm_calibration_pose, arm_home, head_calibration_pose, head_home;
+  // The robot's ROS interfaces the calibration uses (keys arm.controller, head.controller: their
+  // control_msgs/FollowJointTrajectory actions; head.stereo_camera.namespace: NS of the stereo
+  // pair's NS/{left,right}/{image_raw,camera_info}); "" when the description does not name them
+  // (then the calibration nets' own names hold). Valid ROS graph names, checked at load.
+  std::string arm_controller, head_controller, stereo_namespace;
   // What a calibration estimates (key `free_params`, as Fetch's robot_calibration names them;
   // freeParams below); empty: everything it can.
   std::vector<std::string> free_params;
