@@ -21,7 +21,7 @@
 //   ~markers            visualization_msgs/MarkerArray: marker poses of all samples (latched)
 //   ~detections/<camera>/image   bgr8, the detected marker points drawn, per sample as it is
 //                       measured (latched), with ~detections/<camera>/camera_info beside it; the
-//                       cameras are the sample net's `<camera>_image` outputs (left, right)
+//                       cameras are the sample net's `<camera>_image` outputs (left, right, or mono)
 // Parameters (private): net (the calibration net file), replay_net (the sample net of replays),
 //   description, marker, calibration_file, redundancy (5), method (joint), poses_per_loop (joint
 //   method, 2), max_poses (with an uncertainty target and no request max_poses: at most this many
@@ -32,7 +32,10 @@
 //   joint_states, record_bag (a rosbag to record each live calibration's samples in: per sample the
 //   stereo pair, both camera_info and the joint readings it used, and tf / tf_static while it runs;
 //   written whole on success, a failed run leaves the previous bag as it was: bag_recorder.h),
-//   record_camera (the camera namespace the bag names, "stereo"). The acquisition's
+//   record_camera (the camera namespace the bag names, "stereo"), calibration_camera (stereo or
+//   mono: the camera measured with; default the description's head.calibration_camera), sample_net
+//   (the sample net run in place of ~net's own, e.g. config/nets/calibration_sample_mono.yaml
+//   with calibration_camera mono; the node refuses a sample net of other cameras). The acquisition's
 //   settings (speed, timeouts, settling, camera namespace) are properties of the sample net's
 //   blocks: use ~net for a net with other values.
 #pragma once
