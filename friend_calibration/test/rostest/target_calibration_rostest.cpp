@@ -9,7 +9,8 @@
 // the identifiable truth (~max_error_mm, ~max_error_deg). ~cameras (2: the stereo pair; 1: a mono
 // camera) is how many detections a sample holds at most, ~trigger the camera's trigger service
 // (/stereo/trigger). With ~bad_target_node, a node given a bad target file must name it in every
-// answer.
+// answer; with ~wrong_cameras_node, a node whose sample net measures with other cameras than its
+// calibration camera.
 #include <cmath>
 #include <cstdio>
 
@@ -127,6 +128,18 @@ TEST(TargetCalibration, ABadTargetFileIsNamedInTheAnswer) {
   std::string node, expected;
   if (!ros::NodeHandle("~").getParam("bad_target_node", node)) GTEST_SKIP() << "no ~bad_target_node in this .test";
   ASSERT_TRUE(ros::NodeHandle("~").getParam("bad_target_message", expected));
+  ASSERT_TRUE(ros::service::waitForService(node + "/calibrate", ros::Duration(60)));
+  imagenets_calibration_msgs::Calibrate srv;
+  srv.request.redundancy = 3;
+  ASSERT_TRUE(ros::service::call(node + "/calibrate", srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find(expected), std::string::npos) << srv.response.message;
+}
+
+TEST(TargetCalibration, ANodeWhoseSampleNetIsOfOtherCamerasSaysSo) {
+  std::string node, expected;
+  if (!ros::NodeHandle("~").getParam("wrong_cameras_node", node)) GTEST_SKIP() << "no ~wrong_cameras_node in this .test";
+  ASSERT_TRUE(ros::NodeHandle("~").getParam("wrong_cameras_message", expected));
   ASSERT_TRUE(ros::service::waitForService(node + "/calibrate", ros::Duration(60)));
   imagenets_calibration_msgs::Calibrate srv;
   srv.request.redundancy = 3;
