@@ -283,7 +283,7 @@ OneLoopFallback solveBothWays(const BundleAdjustmentTest& t, const std::vector<S
   f.point = solveJointly(t.model, calibrate(t.model, samples, "paper", limits, CombineOptions()), limits);
   std::vector<const Sample*> used;
   for (int i : f.point.used) used.push_back(&f.point.samples[i]);
-  f.ba = bundleAdjust(t.model, t.cameras, t.points, used, f.point, limits.max_reprojection_error);
+  f.ba = bundleAdjust(t.model, CameraModels(t.model.description(), t.cameras), t.points, used, f.point, limits.max_reprojection_error);
   return f;
 }
 

@@ -120,6 +120,16 @@ TEST(Tool, CalibrationPlanNamesWhatItsPosesLeaveUnobservable) {
   r = tool("calibration-plan --description $(rospack find friend_description)/config/robot.yaml --noise 0");
   EXPECT_EQ(r.status, 2);
   expectContains(r.output, "--noise must be positive");
+  // With the mobile manipulator's mono camera (--camera) instead of its stereo pair.
+  r = tool("calibration-plan --description $(rospack find robot_description)/config/mobile_manipulator/robot.yaml "
+           "--camera mono --poses 30", true);
+  EXPECT_EQ(r.status, 0) << r.output;
+  expectContains(r.output, "method joint, 30 poses, mono camera");
+  expectContains(r.output, "every estimated parameter observable");
+  r = tool("calibration-plan --description $(rospack find robot_description)/config/six_axis/robot.yaml --camera mono");
+  EXPECT_EQ(r.status, 2);
+  expectContains(r.output, "--camera: 'mono', but ");
+  expectContains(r.output, "gives the head no mono camera (head.mono_camera)");
 }
 
 TEST(Tool, HelpListsThePackagesCommands) {

@@ -41,3 +41,32 @@ TEST(AssembleCalibrationSample, JointsInTheDescriptionsOrderAndBothObservations)
   arm->position.pop_back();
   EXPECT_NE(h.input("arm_joints", arm).runError().find("input 'arm_joints'"), std::string::npos);
 }
+
+TEST(AssembleCalibrationSample, OneCamerasObservationAlone) {
+  const auto d = robot_description::loadRobotDescription(robot_description::exampleRobotDescriptionPath());
+  auto arm = boost::make_shared<sensor_msgs::JointState>();
+  arm->name = d.arm.names();
+  arm->position = {1, 2, 3, 4, 5, 6, 7};
+  auto head = boost::make_shared<sensor_msgs::JointState>();
+  head->name = d.head.names();
+  head->position = {0.1, 0.2};
+  auto mono = boost::make_shared<imagenets_calibration_msgs::MarkerObservation>();
+  mono->found = true;
+  mono->reprojection_error = 0.02;
+  auto image = boost::make_shared<sensor_msgs::Image>();
+  image->header.stamp = ros::Time(3.25);
+  BlockHarness h("imagenets/AssembleCalibrationSample");
+  h.set("description", robot_description::exampleRobotDescriptionPath());
+  h.input("arm_joints", arm).input("head_joints", head).input("image", image);
+  // Without any camera's observation there is no sample.
+  EXPECT_NE(h.runError().find("inputs 'left', 'right', 'mono': none has an observation"), std::string::npos);
+  h.input("mono", mono);
+  h.run();
+  const auto s = h.output<imagenets_calibration_msgs::CalibrationSample>("sample");
+  ASSERT_TRUE(s);
+  EXPECT_TRUE(s->mono.found);
+  EXPECT_EQ(s->mono.reprojection_error, 0.02);
+  EXPECT_FALSE(s->left.found);
+  EXPECT_FALSE(s->right.found);
+  EXPECT_EQ(s->stamp, 3.25);
+}

@@ -36,6 +36,7 @@ class CalibrationPlan : public imagenets::Block {
     addProperty<std::string>("bag", "", "a rosbag: its still stereo pairs are the samples (no robot)").path();
     for (const auto& p : bagSampleProperties()) addPropertySpec(p);
     addProperty<std::string>("description", "", "robot description YAML (required)").path();
+    addPropertySpec(calibrationCameraProperty());
   }
 
   void process(imagenets::Context& ctx) override {
@@ -67,7 +68,8 @@ class CalibrationPlan : public imagenets::Block {
  private:
   // A bag's still stereo pairs are the samples.
   static void planBag(imagenets::Context& ctx, imagenets_calibration_msgs::CalibrationPlan& plan) {
-    const RobotModel& model = robotModel(ctx.property<std::string>("description"));
+    const RobotModel& model =
+        robotModel(ctx.property<std::string>("description"), ctx.property<std::string>("calibration_camera"));
     try {
       const auto bag = readBagSamples(plan.bag_file, sampleJoints(model), bagSampleSettings(ctx));
       plan.samples = static_cast<int>(bag->samples.size());
@@ -101,7 +103,8 @@ class CalibrationPlan : public imagenets::Block {
       throw imagenets::BlockError("property 'poses': the paper method's samples must be odd (the per-axis median "
                                   "needs a middle value), got " + std::to_string(poses));
     }
-    const RobotModel& model = robotModel(ctx.property<std::string>("description"));
+    const RobotModel& model =
+        robotModel(ctx.property<std::string>("description"), ctx.property<std::string>("calibration_camera"));
     plan.samples = poses > 0 ? poses : plan.loops * (plan.method == "joint" ? ctx.property<int>("poses_per_loop") : 1);
     plan.max_samples = plan.samples;
     plan.target_uncertainty = ctx.property<double>("target_uncertainty");

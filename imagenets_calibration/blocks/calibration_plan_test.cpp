@@ -8,6 +8,7 @@
 #include "imagenets_calibration/bundle_adjustment.h"
 #include "imagenets_calibration/calibration.h"
 #include "imagenets/blocks/block_harness.h"
+#include "imagenets/package_file.h"
 #include "robot_description/robot_model.h"
 
 using imagenets::blocks::BlockHarness;
@@ -148,4 +149,28 @@ TEST(CalibrationPlan, ACameraOnAStandSeesTheTargetCarriedAcrossItsImage) {
   EXPECT_GE(cells.size(), 5u) << "the target's centre in " << cells.size() << " of the image's 9 thirds";
   EXPECT_GT(max_u - min_u, 300) << min_u << " .. " << max_u << " px";
   EXPECT_GT(max_v - min_v, 200) << min_v << " .. " << max_v << " px";
+}
+
+TEST(CalibrationPlan, PlansForTheCameraItsCalibrationCameraNames) {
+  // The mobile manipulator's mono camera has another field of view than its stereo pair: the
+  // head looks past the target by a fraction of that camera's, so the poses differ.
+  const std::string path = imagenets::packageFile("robot_description", "config/mobile_manipulator/robot.yaml");
+  const auto d = robot_description::loadRobotDescription(path);
+  BlockHarness h("imagenets/CalibrationPlan");
+  h.set("description", path).set("method", std::string("joint")).set("poses", 6);
+  h.set("calibration_camera", std::string("mono"));
+  h.run();
+  const auto plan = h.output<imagenets_calibration_msgs::CalibrationPlan>("plan");
+  ASSERT_TRUE(plan);
+  const auto mono = calibrationPoses(RobotModel(robot_description::withCalibrationCamera(d, "mono", "test")), 6, "joint");
+  const auto stereo = calibrationPoses(RobotModel(d), 6, "joint");
+  bool differ = false;
+  for (size_t k = 0; k < 6; ++k) {
+    EXPECT_EQ(plan->head[k].position, mono[k].head);
+    EXPECT_EQ(plan->arm[k].position, mono[k].arm);
+    differ |= mono[k].head != stereo[k].head;
+  }
+  EXPECT_TRUE(differ);
+  h.set("calibration_camera", std::string("both"));
+  EXPECT_NE(h.runError().find("property 'calibration_camera': 'both' is no calibration camera"), std::string::npos);
 }

@@ -10,14 +10,29 @@
 namespace imagenets_calibration {
 namespace blocks {
 
-const RobotModel& robotModel(const std::string& path) {
+const RobotModel& robotModel(const std::string& path, const std::string& calibration_camera) {
   static std::mutex mutex;
-  static std::map<std::string, std::unique_ptr<RobotModel>> cache;
+  static std::map<std::pair<std::string, std::string>, std::unique_ptr<RobotModel>> cache;
   const auto& description = imagenets::blocks::robotDescription(path);
   std::lock_guard<std::mutex> lock(mutex);
-  auto& model = cache[description.source];
-  if (!model) model = std::make_unique<RobotModel>(description);
+  auto& model = cache[{description.source, calibration_camera}];
+  if (!model) {
+    try {
+      model = std::make_unique<RobotModel>(
+          calibration_camera.empty() ? description
+                                     : robot_description::withCalibrationCamera(description, calibration_camera,
+                                                                                "property 'calibration_camera'"));
+    } catch (const std::runtime_error& e) {
+      throw imagenets::BlockError(e.what());
+    }
+  }
   return *model;
+}
+
+imagenets::PropertySpec calibrationCameraProperty() {
+  imagenets::PropertySpec p("calibration_camera", imagenets::PropertyTraits<std::string>::kind, std::string(),
+                            "the camera measured with: stereo, mono, or empty: the description's calibration_camera");
+  return p;
 }
 
 int sampleIndex(const imagenets::Context& ctx, const imagenets_calibration_msgs::CalibrationPlan& plan) {

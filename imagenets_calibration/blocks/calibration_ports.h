@@ -15,8 +15,12 @@
 namespace imagenets_calibration {
 namespace blocks {
 
-// The nominal model of the description file in `path` (required).
-const RobotModel& robotModel(const std::string& path);
+// The nominal model of the description file in `path` (required); with `calibration_camera`
+// ("stereo" or "mono"; "" the description's own) measuring with that camera. A bad camera throws
+// BlockError naming the property.
+const RobotModel& robotModel(const std::string& path, const std::string& calibration_camera = "");
+// The property `calibration_camera` of the blocks that measure or plan with the calibration camera.
+imagenets::PropertySpec calibrationCameraProperty();
 
 // The index this run works on: the input `repetition` (a repeated sub-net's index) when it has a
 // value, else the property `index`; checked against the plan's sample count.

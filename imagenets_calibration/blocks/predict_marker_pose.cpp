@@ -1,5 +1,6 @@
 // Where the nominal model expects the gripper marker in each camera (T_camera_marker) at the
-// measured joint angles: the detection's region of interest and its pose-ambiguity hint.
+// measured joint angles: the detection's region of interest and its pose-ambiguity hint. The
+// stereo pair's two, and the head's mono camera's when the description has one.
 #include <boost/make_shared.hpp>
 #include <geometry_msgs/PoseStamped.h>
 #include <sensor_msgs/JointState.h>
@@ -19,6 +20,7 @@ class PredictMarkerPose : public imagenets::Block {
     addInput<sensor_msgs::JointState>("head_joints", "head joint_states");
     addOutput<geometry_msgs::PoseStamped>("left", "marker in the left optical frame, nominal");
     addOutput<geometry_msgs::PoseStamped>("right", "marker in the right optical frame, nominal");
+    addOutput<geometry_msgs::PoseStamped>("mono", "marker in the mono camera's optical frame, nominal (a head with one)");
     addProperty<std::string>("description", "", "robot description YAML (required)").path();
   }
 
@@ -39,6 +41,7 @@ class PredictMarkerPose : public imagenets::Block {
     };
     ctx.output("left", pose(model.leftCamera(head_q), d.left_camera.frame));
     ctx.output("right", pose(model.rightCamera(head_q), d.right_camera_frame));
+    if (!d.mono_camera.frame.empty()) ctx.output("mono", pose(model.monoCamera(head_q), d.mono_camera.frame));
   }
 };
 
@@ -46,4 +49,4 @@ class PredictMarkerPose : public imagenets::Block {
 }  // namespace imagenets_calibration
 
 IMAGENETS_REGISTER_BLOCK(imagenets_calibration::blocks::PredictMarkerPose, "imagenets/PredictMarkerPose", "calibration",
-                         "Gripper marker in the left and right camera frame from the nominal model");
+                         "Gripper marker in the head cameras' frames (left, right, mono) from the nominal model");

@@ -4,6 +4,7 @@
 
 #include "imagenets_calibration/calibration.h"
 #include "imagenets/blocks/block_harness.h"
+#include "imagenets/package_file.h"
 #include "imagenets/vision/frames.h"
 #include "robot_description/robot_model.h"
 
@@ -29,7 +30,29 @@ TEST(PredictMarkerPose, TheNominalModelsMarkerInBothCameras) {
   EXPECT_LT((left.translation() - expected.translation()).norm(), 1e-9);
   EXPECT_GT(left.translation().z(), 0.2);  // in front of the camera
   EXPECT_LT(((model.leftToRight() * right).translation() - left.translation()).norm(), 1e-9);
+  EXPECT_FALSE(h.hasOutput("mono"));  // this head has no mono camera
   head->name = {"pan"};
   head->position = {0};
   EXPECT_NE(h.input("head_joints", head).runError().find("input 'head_joints'"), std::string::npos);
+}
+
+TEST(PredictMarkerPose, TheMonoCamerasToo) {
+  const std::string path = imagenets::packageFile("robot_description", "config/mobile_manipulator/robot.yaml");
+  const RobotModel model(robot_description::loadRobotDescription(path));
+  const auto& d = model.description();
+  auto arm = boost::make_shared<sensor_msgs::JointState>();
+  arm->name = d.arm.names();
+  arm->position = d.arm_calibration_pose;
+  auto head = boost::make_shared<sensor_msgs::JointState>();
+  head->name = d.head.names();
+  head->position = d.head_calibration_pose;
+  BlockHarness h("imagenets/PredictMarkerPose");
+  h.set("description", path);
+  h.input("arm_joints", arm).input("head_joints", head);
+  h.run();
+  const auto mono = h.output<geometry_msgs::PoseStamped>("mono");
+  ASSERT_TRUE(mono);
+  EXPECT_EQ(mono->header.frame_id, "head_camera_rgb_optical_frame");
+  const Eigen::Isometry3d expected = model.monoCamera(d.head_calibration_pose).inverse() * model.marker(d.arm_calibration_pose);
+  EXPECT_LT((imagenets::frames::toIsometry(mono->pose, "mono").translation() - expected.translation()).norm(), 1e-9);
 }

@@ -44,10 +44,12 @@ class SolveCalibration : public imagenets::Block {
         .range(0.0, 1.0);
     addProperty<std::string>("child_frame_id", "pth_fixed_point", "the fixed point's frame");
     addProperty<std::string>("description", "", "robot description YAML (required)").path();
+    addPropertySpec(calibrationCameraProperty());
   }
 
   void process(imagenets::Context& ctx) override {
-    const RobotModel& model = robotModel(ctx.property<std::string>("description"));
+    const RobotModel& model =
+        robotModel(ctx.property<std::string>("description"), ctx.property<std::string>("calibration_camera"));
     const auto plan = ctx.input<imagenets_calibration_msgs::CalibrationPlan>("plan");
     const auto in = ctx.input<imagenets_calibration_msgs::CalibrationSamples>("samples");
     std::vector<Sample> samples;

@@ -6,6 +6,7 @@
 
 #include "imagenets_calibration/calibration_msgs.h"
 #include "imagenets/blocks/block_harness.h"
+#include "imagenets/package_file.h"
 #include "robot_description/robot_model.h"
 
 using imagenets::blocks::BlockHarness;
@@ -86,4 +87,42 @@ TEST(SolveCalibration, AFailedCalibrationIsAResultWithoutAFixedPoint) {
   EXPECT_FALSE(h.hasOutput("fixed_point"));
   plan->method = "best";
   EXPECT_NE(h.input("plan", plan).runError().find("unknown calibration method 'best'"), std::string::npos);
+}
+
+TEST(SolveCalibration, MeasuresWithTheMonoCameraWhenToldTo) {
+  // The mobile manipulator's samples as its mono camera sees them (no stereo observation).
+  const std::string path = imagenets::packageFile("robot_description", "config/mobile_manipulator/robot.yaml");
+  const auto stereo = robot_description::loadRobotDescription(path);
+  const RobotModel model(robot_description::withCalibrationCamera(stereo, "mono", "test"));
+  const Eigen::Isometry3d truth = model.headBase() * Eigen::Translation3d(0.004, -0.003, 0.002);
+  std::vector<Sample> samples;
+  for (const auto& p : calibrationPoses(model, 5, "paper")) {
+    Sample s;
+    s.arm_q = p.arm;
+    s.head_q = p.head;
+    s.mono.found = true;
+    s.mono.pose = (truth * headChain(model, p.head)).inverse() * model.marker(p.arm);
+    s.mono.reprojection_error = 0.02;
+    samples.push_back(s);
+  }
+  auto plan = boost::make_shared<imagenets_calibration_msgs::CalibrationPlan>();
+  plan->method = "paper";
+  plan->samples = 5;
+  BlockHarness h("imagenets/SolveCalibration");
+  h.set("description", path);
+  h.input("samples", toSamplesMsg(samples)).input("plan", plan);
+  h.run();
+  // The description's own camera is the stereo pair: no sample has its observations.
+  const Result as_stereo = fromMsg(*h.output<imagenets_calibration_msgs::CalibrationResult>("result"));
+  EXPECT_FALSE(as_stereo.success);
+  EXPECT_NE(as_stereo.message.find("marker not found (left: no detection; right: no detection)"), std::string::npos)
+      << as_stereo.message;
+  h.set("calibration_camera", std::string("mono"));
+  h.run();
+  const Result r = fromMsg(*h.output<imagenets_calibration_msgs::CalibrationResult>("result"));
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_EQ(r.samples[0].fusion, "mono");
+  EXPECT_LT((r.fixed_point.translation() - truth.translation()).norm(), 1e-9);
+  h.set("calibration_camera", std::string("left"));
+  EXPECT_NE(h.runError().find("property 'calibration_camera': 'left' is no calibration camera"), std::string::npos);
 }

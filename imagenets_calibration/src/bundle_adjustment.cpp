@@ -90,9 +90,8 @@ Eigen::MatrixXd denseOf(const ceres::CRSMatrix& crs) {
 struct DetectionResidual {
   const RobotModel* model;
   const FreeParams* layout;
-  const PinholeCamera* camera;
+  const CalibrationCamera* camera;
   const Sample* sample;
-  bool right;
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> observed;
   Eigen::Isometry3d x0, m0;
@@ -121,13 +120,12 @@ struct DetectionResidual {
       camera_in_base = camera_in_base * robot_description::jointMatrix(d.head.joints[j], T(sample->head_q[j]) +
                                                                                              offsetOf(layout->head, head_off, j));
     }
-    camera_in_base = camera_in_base * matrixOf(d.left_camera.pose).cast<T>();
-    if (right) camera_in_base = camera_in_base * matrixOf(model->leftToRight()).cast<T>();
+    camera_in_base = camera_in_base * matrixOf(camera->in_head).cast<T>() * matrixOf(camera->in_rig).cast<T>();
     const Mat4<T> marker_in_camera = inverseOf(camera_in_base) * tcp * perturbed(m0, p[1]);
     for (size_t i = 0; i < points.size(); ++i) {
       const Eigen::Matrix<T, 3, 1> pc =
           marker_in_camera.template topLeftCorner<3, 3>() * points[i].cast<T>() + marker_in_camera.template topRightCorner<3, 1>();
-      const Eigen::Matrix<T, 2, 1> uv = projectPoint(*camera, pc);
+      const Eigen::Matrix<T, 2, 1> uv = projectPoint(camera->model, pc);
       T ex = (uv.x() - T(observed[i].x())) / T(sigma), ey = (uv.y() - T(observed[i].y())) / T(sigma);
       // Huber loss per point, applied to the residual itself (its square is rho(|e|^2) =
       // 2 k |e| - k^2 beyond k): Ceres' loss functions act on a whole block, and one block per
@@ -210,6 +208,29 @@ std::optional<StereoCameras> stereoCamerasOf(const robot_description::RobotDescr
   }
 }
 
+CameraModels::CameraModels(const robot_description::RobotDescription& d, const StereoCameras& stereo) {
+  const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
+  cameras = {{Sample::kLeft, stereo.left, d.image_width, d.image_height, d.left_camera.pose, identity},
+             {Sample::kRight, stereo.right, d.image_width, d.image_height, d.left_camera.pose, RobotModel(d).leftToRight()}};
+}
+
+std::optional<CameraModels> cameraModelsOf(const robot_description::RobotDescription& d, std::string* why) {
+  if (d.calibration_camera != "mono") {
+    const auto stereo = stereoCamerasOf(d, why);
+    if (!stereo) return std::nullopt;
+    return CameraModels(d, *stereo);
+  }
+  try {
+    const auto m = imagenets::render::CameraModel::fromCameraInfo(imagenets::readCameraInfo(d.mono_camera_info));
+    CameraModels c;
+    c.cameras = {{Sample::kMono, fromCameraModel(m), m.width, m.height, d.mono_camera.pose, Eigen::Isometry3d::Identity()}};
+    return c;
+  } catch (const std::exception& e) {
+    if (why) *why = e.what();
+    return std::nullopt;
+  }
+}
+
 std::vector<Eigen::Vector3d> markerDefinedPoints(double size, double border) {
   const double o = size / 2, i = size * (1 - 2 * border) / 2;
   return {{-o, o, 0}, {o, o, 0}, {o, -o, 0}, {-o, -o, 0}, {-i, i, 0}, {i, i, 0}, {i, -i, 0}, {-i, -i, 0}};
@@ -217,28 +238,28 @@ std::vector<Eigen::Vector3d> markerDefinedPoints(double size, double border) {
 
 namespace {
 
-// One detection the fit uses.
+// One detection the fit uses: a sample's observation by one of the cameras.
 struct Use {
   const Sample* sample;
-  bool right;
-  const MarkerObservation& observation() const { return right ? sample->right : sample->left; }
+  const CalibrationCamera* camera;
+  const MarkerObservation& observation() const { return sample->observation(camera->observation); }
 };
 
 // The detections to fit: usable (as the chain uses them) and with points that fit their pose
 // through the camera model; `mismatched` counts those that do not.
-std::vector<Use> detectionsToFit(const StereoCameras& cameras, const std::vector<Eigen::Vector3d>& marker_points,
+std::vector<Use> detectionsToFit(const CameraModels& cameras, const std::vector<Eigen::Vector3d>& marker_points,
                                  const std::vector<const Sample*>& samples, double max_reprojection_error,
                                  const BundleAdjustmentOptions& options, int& mismatched) {
   std::vector<Use> uses;
   for (const Sample* s : samples) {
-    for (bool right : {false, true}) {
-      const Use u{s, right};
+    for (const CalibrationCamera& camera : cameras.cameras) {
+      const Use u{s, &camera};
       const MarkerObservation& o = u.observation();
       const std::vector<Eigen::Vector3d>& points = o.object_points.empty() ? marker_points : o.object_points;
       if (!o.found || o.reprojection_error > max_reprojection_error || o.points.size() != points.size() || points.size() < 4) {
         continue;
       }
-      if (rmsMismatch(right ? cameras.right : cameras.left, o, points) > options.max_point_mismatch) {
+      if (rmsMismatch(camera.model, o, points) > options.max_point_mismatch) {
         ++mismatched;
         continue;
       }
@@ -254,9 +275,10 @@ class PixelFit {
  public:
   static constexpr double kPriorTranslation = 0.03, kPriorRotation = 0.175, kPriorOffset = 0.0035;  // as solveJointly
 
-  PixelFit(const RobotModel& model, const StereoCameras& cameras, const std::vector<Eigen::Vector3d>& marker_points,
+  // (Each detection to fit names its camera, whose models outlive the fit.)
+  PixelFit(const RobotModel& model, const std::vector<Eigen::Vector3d>& marker_points,
            std::vector<Use> uses, const Result& start, const BundleAdjustmentOptions& options)
-      : model_(model), cameras_(cameras), marker_points_(marker_points), uses_(std::move(uses)), start_(start),
+      : model_(model), marker_points_(marker_points), uses_(std::move(uses)), start_(start),
         options_(options), layout_(robot_description::freeParams(model.description())) {
     const auto& d = model.description();
     arm_full_ = start.arm_joint_offsets;
@@ -339,7 +361,7 @@ class PixelFit {
  private:
   DetectionResidual residualOf(const Use& u, double sigma, bool robust) const {
     const MarkerObservation& o = u.observation();
-    return DetectionResidual{&model_, &layout_, u.right ? &cameras_.right : &cameras_.left, u.sample, u.right,
+    return DetectionResidual{&model_, &layout_, u.camera, u.sample,
                              o.object_points.empty() ? marker_points_ : o.object_points, o.points, start_.fixed_point,
                              start_.marker_offset, sigma, robust, options_.huber_sigmas};
   }
@@ -417,7 +439,6 @@ class PixelFit {
   }
 
   const RobotModel& model_;
-  const StereoCameras& cameras_;
   const std::vector<Eigen::Vector3d>& marker_points_;
   const std::vector<Use> uses_;
   const Result& start_;
@@ -431,7 +452,7 @@ class PixelFit {
 
 }  // namespace
 
-BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& cameras,
+BundleAdjustment bundleAdjust(const RobotModel& model, const CameraModels& cameras,
                               const std::vector<Eigen::Vector3d>& marker_points, const std::vector<const Sample*>& samples,
                               const Result& start, double max_reprojection_error, const BundleAdjustmentOptions& options) {
   BundleAdjustment out;
@@ -443,7 +464,7 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
     return out;
   }
   out.observations = static_cast<int>(uses.size());
-  PixelFit fit(model, cameras, marker_points, std::move(uses), start, options);
+  PixelFit fit(model, marker_points, std::move(uses), start, options);
   // First with a nominal noise of 0.1 px, then once more with the noise the residuals show (the
   // Huber threshold and the priors' weight depend on it), and the covariance there.
   // (Or with the noise the options give, e.g. when predicting what poses will determine.)
@@ -476,7 +497,7 @@ BundleAdjustment bundleAdjust(const RobotModel& model, const StereoCameras& came
 
 namespace imagenets_calibration {
 
-Observability predictObservability(const RobotModel& model, const StereoCameras& cameras,
+Observability predictObservability(const RobotModel& model, const CameraModels& cameras,
                                    const std::vector<CalibrationPose>& poses, double noise_px) {
   const auto& d = model.description();
   const std::vector<Eigen::Vector3d> points = markerDefinedPoints(d.marker_size);
@@ -488,15 +509,14 @@ Observability predictObservability(const RobotModel& model, const StereoCameras&
     s.arm_q = pose.arm;
     s.head_q = pose.head;
     const Eigen::Isometry3d marker = model.marker(pose.arm);
-    for (bool right : {false, true}) {
-      const PinholeCamera& camera = right ? cameras.right : cameras.left;
-      MarkerObservation& o = right ? s.right : s.left;
-      o.pose = (right ? model.rightCamera(pose.head) : model.leftCamera(pose.head)).inverse() * marker;
+    for (const CalibrationCamera& camera : cameras.cameras) {
+      MarkerObservation& o = s.observation(camera.observation);
+      o.pose = camera.pose(d.head.end(pose.head)).inverse() * marker;
       o.found = true;
       for (const auto& p : points) {
         const Eigen::Vector3d pc = o.pose * p;
-        const Eigen::Vector2d uv = camera.project(pc);
-        if (!(pc.z() > 0) || uv.x() < 0 || uv.y() < 0 || uv.x() > d.image_width || uv.y() > d.image_height) o.found = false;
+        const Eigen::Vector2d uv = camera.model.project(pc);
+        if (!(pc.z() > 0) || uv.x() < 0 || uv.y() < 0 || uv.x() > camera.width || uv.y() > camera.height) o.found = false;
         o.points.push_back(uv);
       }
       if (o.pose.linear().col(2).dot(o.pose.translation()) >= 0) o.found = false;  // its back to the camera

@@ -126,20 +126,21 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
   static const std::vector<std::pair<double, double>> image_positions{
       {0, 0}, {0.5, 0.5}, {-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}};
   std::string why;
-  const auto cameras = stereoCamerasOf(d, &why);
-  // Whether the whole marker is seen in both images, a margin from their borders, and not too
-  // obliquely for the detector.
+  const auto cameras = cameraModelsOf(d, &why);
+  // Whether the whole marker is seen in every image of the calibration's cameras, a margin from
+  // their borders, and not too obliquely for the detector.
   auto visible = [&](const CalibrationPose& p) {
     if (!cameras) return true;
-    const double margin = 0.15 * d.image_width, max_oblique = 50 * M_PI / 180;
-    for (bool right : {false, true}) {
-      const Eigen::Isometry3d m = (right ? model.rightCamera(p.head) : model.leftCamera(p.head)).inverse() * model.marker(p.arm);
+    const double max_oblique = 50 * M_PI / 180;
+    for (const CalibrationCamera& camera : cameras->cameras) {
+      const double margin = 0.15 * camera.width;
+      const Eigen::Isometry3d m = camera.pose(d.head.end(p.head)).inverse() * model.marker(p.arm);
       if (-m.linear().col(2).dot(m.translation().normalized()) < std::cos(max_oblique)) return false;
       for (const auto& corner : markerDefinedPoints(d.marker_size)) {
         const Eigen::Vector3d pc = m * corner;
-        const Eigen::Vector2d uv = (right ? cameras->right : cameras->left).project(pc);
-        if (!(pc.z() > 0) || uv.x() < margin || uv.y() < margin || uv.x() > d.image_width - margin ||
-            uv.y() > d.image_height - margin) {
+        const Eigen::Vector2d uv = camera.model.project(pc);
+        if (!(pc.z() > 0) || uv.x() < margin || uv.y() < margin || uv.x() > camera.width - margin ||
+            uv.y() > camera.height - margin) {
           return false;
         }
       }
@@ -152,13 +153,19 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
     }
     return true;
   };
-  const double half_fov_x = cameras ? std::atan(d.image_width / 2.0 / cameras->left.K(0, 0)) : 0.0;
-  const double half_fov_y = cameras ? std::atan(d.image_height / 2.0 / cameras->left.K(1, 1)) : 0.0;
+  const CalibrationCamera* first = cameras ? &cameras->cameras.front() : nullptr;
+  const double half_fov_x = first ? std::atan(first->width / 2.0 / first->model.K(0, 0)) : 0.0;
+  const double half_fov_y = first ? std::atan(first->height / 2.0 / first->model.K(1, 1)) : 0.0;
   // A head without joints (a camera on a stand) cannot aim: the arm moves the marker to the image
-  // position instead, at the depth the arm's variation gives, in the camera between the pair.
+  // position instead, at the depth the arm's variation gives, seen from the middle of the cameras.
   const bool head_aims = !d.head.joints.empty();
-  Eigen::Isometry3d centre_camera = model.leftCamera(std::vector<double>(d.head.joints.size(), 0.0));
-  centre_camera.translation() += centre_camera.linear() * Eigen::Vector3d(d.stereo_baseline / 2, 0, 0);
+  const Eigen::Isometry3d head_end = d.head.end(std::vector<double>(d.head.joints.size(), 0.0));
+  Eigen::Isometry3d centre_camera = first ? first->pose(head_end) : model.leftCamera(std::vector<double>(d.head.joints.size(), 0.0));
+  if (cameras) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const CalibrationCamera& c : cameras->cameras) sum += c.pose(head_end).translation();
+    centre_camera.translation() = sum / static_cast<double>(cameras->cameras.size());
+  }
   auto atImagePosition = [&](const std::vector<double>& arm, double fx, double fy) -> std::optional<std::vector<double>> {
     const Eigen::Vector3d m = centre_camera.inverse() * model.marker(arm).translation();
     if (!(m.z() > 0)) return std::nullopt;
@@ -237,7 +244,7 @@ Eigen::Isometry3d leftCameraInRobot(const Eigen::Isometry3d& marker_in_robot, co
 }
 
 Eigen::Isometry3d headChain(const RobotModel& model, const std::vector<double>& head_q) {
-  return model.headBase().inverse() * model.leftCamera(head_q);
+  return model.headBase().inverse() * model.calibrationCamera(head_q);
 }
 
 Eigen::Isometry3d pthFixedPoint(const RobotModel& model, const Eigen::Isometry3d& left_camera_in_robot,
@@ -262,17 +269,29 @@ void solveSample(const RobotModel& model, Sample& s, const FusionLimits& limits,
     }
     return true;
   };
-  if (usable(s.left, "left")) left = s.left.pose;
-  if (usable(s.right, "right")) right = markerInLeftCamera(model, s.right.pose);
-  const Fusion f = fuseStereoDetections(left, right, limits);
+  Fusion f;
+  if (model.description().calibration_camera == "mono") {
+    // One camera: nothing to fuse, its detection is the measurement.
+    f.source = "none";
+    if (usable(s.mono, "mono")) {
+      f.valid = true;
+      f.source = "mono";
+      f.pose = s.mono.pose;
+    } else {
+      f.reason = s.mono.found ? "no usable detection" : "marker not found (mono: " + (s.mono.reason.empty() ? "no detection" : s.mono.reason) + ")";
+    }
+  } else {
+    if (usable(s.left, "left")) left = s.left.pose;
+    if (usable(s.right, "right")) right = markerInLeftCamera(model, s.right.pose);
+    f = fuseStereoDetections(left, right, limits);
+    if (!f.valid && !s.left.found && !s.right.found) {
+      f.reason = "marker not found (left: " + (s.left.reason.empty() ? "no detection" : s.left.reason) +
+                 "; right: " + (s.right.reason.empty() ? "no detection" : s.right.reason) + ")";
+    }
+  }
   s.fusion = f.source;
   if (!f.valid) {
-    std::string why = f.reason;
-    if (!s.left.found && !s.right.found) {
-      why = "marker not found (left: " + (s.left.reason.empty() ? "no detection" : s.left.reason) +
-            "; right: " + (s.right.reason.empty() ? "no detection" : s.right.reason) + ")";
-    }
-    s.reason = rejected + why;
+    s.reason = rejected + f.reason;
     return;
   }
   s.marker_in_left = f.pose;
@@ -346,7 +365,7 @@ Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions
   }
   if (valid.empty()) {
     r.samples = std::move(samples);
-    const bool seen = std::any_of(r.samples.begin(), r.samples.end(), [](const Sample& s) { return s.left.found || s.right.found; });
+    const bool seen = std::any_of(r.samples.begin(), r.samples.end(), [](const Sample& s) { return s.seen(); });
     if (!seen && !r.samples.empty()) {
       // Nothing to fit at all: say so first (wrong target file, target not mounted, camera covered).
       r.message = "the target was never seen: in none of the " + std::to_string(r.samples.size()) +
@@ -612,7 +631,7 @@ Result solveJointly(const RobotModel& model, const Result& paper, const FusionLi
 void refineAtPixelLevel(const RobotModel& model, Result& r, const FusionLimits& limits) {
   if (!r.success) return;
   std::string why;
-  const auto cameras = stereoCamerasOf(model.description(), &why);
+  const auto cameras = cameraModelsOf(model.description(), &why);
   if (!cameras) {
     r.message += "; pixel-level fit skipped: no camera model (" + why + ")";
     return;
@@ -649,8 +668,8 @@ Result calibrate(const RobotModel& model, std::vector<Sample> samples, const std
   FusionLimits tightened = limits;
   std::vector<double> reprojection;
   for (const auto& s : samples) {
-    for (const auto* o : {&s.left, &s.right}) {
-      if (o->found) reprojection.push_back(o->reprojection_error);
+    for (int i = 0; i < Sample::kCameras; ++i) {
+      if (s.observation(i).found) reprojection.push_back(s.observation(i).reprojection_error);
     }
   }
   if (limits.relative_reprojection_error > 0 && !reprojection.empty()) {

@@ -44,7 +44,8 @@ imagenets_calibration_msgs::MarkerObservation toMsg(const MarkerObservation& o) 
 MarkerObservation fromMsg(const imagenets_calibration_msgs::MarkerObservation& m) {
   MarkerObservation o;
   o.found = m.found;
-  o.pose = frames::toIsometry(m.pose, "marker observation pose");
+  // A camera the sample was not measured with leaves its observation unset (all zero): no pose.
+  if (m.found) o.pose = frames::toIsometry(m.pose, "marker observation pose");
   o.confidence = m.confidence;
   o.threshold = m.threshold;
   o.reprojection_error = m.reprojection_error;
@@ -62,6 +63,7 @@ imagenets_calibration_msgs::CalibrationSample toMsg(const Sample& s) {
   m.head_q = s.head_q;
   m.left = toMsg(s.left);
   m.right = toMsg(s.right);
+  m.mono = toMsg(s.mono);
   m.valid = s.valid;
   m.reason = s.reason;
   m.fusion = s.fusion;
@@ -77,6 +79,7 @@ Sample fromMsg(const imagenets_calibration_msgs::CalibrationSample& m) {
   s.head_q = m.head_q;
   s.left = fromMsg(m.left);
   s.right = fromMsg(m.right);
+  s.mono = fromMsg(m.mono);
   s.valid = m.valid;
   s.reason = m.reason;
   s.fusion = m.fusion;

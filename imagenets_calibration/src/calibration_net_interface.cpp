@@ -58,7 +58,7 @@ imagenets::InnerNet* innerNetOf(const imagenets::Net& net, const std::string& bl
 }  // namespace
 
 const MarkerObservation& observationOf(const Sample& sample, const std::string& camera) {
-  return camera == "right" ? sample.right : sample.left;
+  return camera == "right" ? sample.right : camera == "mono" ? sample.mono : sample.left;
 }
 
 CalibrationNetInterface::CalibrationNetInterface(imagenets::Executor& exec) : exec_(&exec) {

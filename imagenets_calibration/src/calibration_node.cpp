@@ -32,6 +32,14 @@ std::string requiredParam(const ros::NodeHandle& pnh, const std::string& name, c
   return value;
 }
 
+// The robot's description (~description), measured with the camera ~calibration_camera names
+// (stereo or mono; not set: the description's own calibration_camera).
+robot_description::RobotDescription describedRobot(const ros::NodeHandle& pnh) {
+  auto d = robot_description::loadRobotDescription(requiredParam(pnh, "description", "the robot's description YAML"));
+  const std::string camera = pnh.param<std::string>("calibration_camera", "");
+  return camera.empty() ? d : robot_description::withCalibrationCamera(d, camera, "parameter " + pnh.resolveName("calibration_camera"));
+}
+
 std::string defaultCalibrationFile() {
   const char* ros_home = std::getenv("ROS_HOME");
   const char* home = std::getenv("HOME");
@@ -91,8 +99,7 @@ To sameMessage(const From& from) {
 CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh),
       pnh_(pnh),
-      model_(robot_description::loadRobotDescription(
-          requiredParam(pnh, "description", "the robot's description YAML"))),
+      model_(describedRobot(pnh)),
       marker_(imagenets::marker::MarkerDescription::load(
           requiredParam(pnh, "marker", "the marker's description YAML"))) {
   readParameters();
@@ -184,9 +191,32 @@ void CalibrationNode::startServices() {
 }
 
 void CalibrationNode::loadNets(const std::string& net, const std::string& replay_net) {
-  const imagenets::NetSpec spec = imagenets::parseNetFile(net);
+  imagenets::NetSpec spec = imagenets::parseNetFile(net);
+  // ~sample_net: the net's sample net replaced (e.g. calibration_sample_mono.yaml for one camera).
+  const std::string sample_net = pnh_.param<std::string>("sample_net", "");
+  if (!sample_net.empty()) {
+    const std::string samples = "samples";  // calibration_net_interface.h: the repeated sample sub-net
+    if (spec.findBlock(samples) == nullptr) {
+      throw std::runtime_error(net + ": no block '" + samples + "' whose sample net ~sample_net could replace");
+    }
+    spec.block(samples).setProperty("net", boost::filesystem::absolute(sample_net).string());
+  }
   live_ = std::make_unique<imagenets::Executor>(imagenets::Net::build(spec));
   live_net_ = std::make_unique<CalibrationNetInterface>(*live_);  // throws naming what the net lacks
+  // The sample net must measure with the calibration camera: a stereo sample net gives a mono
+  // calibration no observation at all (and the other way round).
+  const auto& cameras = live_net_->cameras();
+  const bool mono = model_.description().calibration_camera == "mono";
+  const bool has_mono = std::find(cameras.begin(), cameras.end(), "mono") != cameras.end();
+  if (!cameras.empty() && mono != has_mono) {
+    std::string list;
+    for (const auto& c : cameras) list += (list.empty() ? "" : ", ") + c;
+    throw std::runtime_error(net + ": its sample net measures with the cameras " + list + ", the calibration camera is " +
+                             model_.description().calibration_camera + " (~calibration_camera, or head.calibration_camera of " +
+                             model_.description().source + "): set ~sample_net to a " +
+                             model_.description().calibration_camera + " sample net" +
+                             (mono ? " (imagenets_calibration's config/nets/calibration_sample_mono.yaml)" : ""));
+  }
   // The replay twin: the same net, its sample sub-net replaced by the replay sample net.
   imagenets::NetSpec replay_spec = spec;
   replay_spec.block(live_net_->samplesBlock()).setProperty("net", replay_net);
@@ -216,6 +246,8 @@ void CalibrationNode::setDescriptionAndTarget(const std::string& net) {
     const auto set = imagenets::setPropertyInNetTree(*exec, "description", description,
                                                      [](const imagenets::PropertySpec& p) { return p.isPath(); });
     ROS_DEBUG("%s: description %s set on %zu blocks", exec->net().origin().c_str(), description.c_str(), set.size());
+    // The camera measured with, for the blocks that plan and solve with it (the node's own choice).
+    imagenets::setPropertyInNetTree(*exec, "calibration_camera", model_.description().calibration_camera);
   }
   // What the gripper carries, when not the nets' own square marker: a target file (~target,
   // config/targets/ of imagenets_vision) for every block that reads one; the sample net's detection

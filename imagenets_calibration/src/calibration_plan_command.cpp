@@ -21,6 +21,7 @@ bool isTranslation(const std::string& name) {
 
 void declare(Flags& f) {
   f.add()("description", po::value<std::string>()->default_value(""), "the robot's description YAML (required)")
+      ("camera", po::value<std::string>()->default_value(""), "stereo or mono: the calibration camera (default: the description's)")
       ("method", po::value<std::string>()->default_value("joint"), "joint or paper")
       ("loops", po::value<int>()->default_value(5), "loops of the plan")
       ("poses-per-loop", po::value<int>()->default_value(2), "poses per loop of the joint method")
@@ -40,19 +41,29 @@ int calibrationPlan(const Options& flags) {
   if (!(noise > 0)) throw UsageError("--noise must be positive (px)");
   const int count = poses > 0 ? poses : loops * (method == "joint" ? poses_per_loop : 1);
   if (description.empty()) throw UsageError("--description FILE is required (the robot's description YAML)");
-  const imagenets_calibration::RobotModel model(robot_description::loadRobotDescription(description));
+  auto d = robot_description::loadRobotDescription(description);
+  const std::string camera = flags["camera"].as<std::string>();
+  if (!camera.empty()) {
+    try {
+      d = robot_description::withCalibrationCamera(d, camera, "--camera");
+    } catch (const std::runtime_error& e) {
+      throw UsageError(e.what());
+    }
+  }
+  const imagenets_calibration::RobotModel model(d);
   std::string why;
-  const auto cameras = imagenets_calibration::stereoCamerasOf(model.description(), &why);
+  const auto cameras = imagenets_calibration::cameraModelsOf(model.description(), &why);
   if (!cameras) throw std::runtime_error("no camera model in the robot description: " + why);
   const auto plan = imagenets_calibration::calibrationPoses(model, count, method);
   const auto o = imagenets_calibration::predictObservability(model, *cameras, plan, noise);
-  std::printf("calibration plan: method %s, %d poses; predicted at the nominal robot with %.3g px point noise\n",
-              method.c_str(), count, noise);
+  std::printf("calibration plan: method %s, %d poses, %s camera; predicted at the nominal robot with %.3g px point noise\n",
+              method.c_str(), count, model.description().calibration_camera.c_str(), noise);
   if (list) {
-    // Each pose: joints, where the marker centre is in the left image, how far, how oblique.
+    // Each pose: joints, where the marker centre is in the (first) calibration camera's image, how far, how oblique.
+    const auto& first = cameras->cameras.front();
     for (size_t k = 0; k < plan.size(); ++k) {
-      const Eigen::Isometry3d m = model.leftCamera(plan[k].head).inverse() * model.marker(plan[k].arm);
-      const Eigen::Vector2d uv = cameras->left.project(m.translation());
+      const Eigen::Isometry3d m = model.calibrationCamera(plan[k].head).inverse() * model.marker(plan[k].arm);
+      const Eigen::Vector2d uv = first.model.project(m.translation());
       const double oblique = std::acos(std::min(1.0, -m.linear().col(2).dot(m.translation().normalized())));
       std::printf("pose %2zu: arm [", k);
       for (double q : plan[k].arm) std::printf(" %6.1f", q * 180 / M_PI);
@@ -85,7 +96,7 @@ int calibrationPlan(const Options& flags) {
 }  // namespace
 
 IMAGENETS_TOOL_COMMAND(calibration_plan, "calibration-plan",
-                       "calibration-plan --description FILE [--method joint|paper] [--loops N] [--poses-per-loop K] [--poses N] "
+                       "calibration-plan --description FILE [--camera stereo|mono] [--method joint|paper] [--loops N] [--poses-per-loop K] [--poses N] "
                        "[--noise PX] [--list]",
                        "what a calibration plan's poses will determine: per parameter prior vs predicted posterior, "
                        "unobservable ones, condition number",

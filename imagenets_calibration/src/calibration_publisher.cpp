@@ -85,12 +85,17 @@ void CalibrationPublisher::onJointStates(const sensor_msgs::JointStateConstPtr& 
     calibrated = calibrated_model_;
   }
   const RobotModel& model = calibrated ? *calibrated : model_;
-  const Eigen::Isometry3d left = headChain(model, head);
+  // The head's cameras in the calibrated frame, whichever of them the calibration measured with.
+  const Eigen::Isometry3d left = model.headBase().inverse() * model.leftCamera(head);
   const auto& d = model_.description();
   std::vector<geometry_msgs::TransformStamped> t{
       imagenets::frames::toTransformStamped(left, child_frame_, "calibrated/" + d.left_camera.frame, msg->header.stamp),
       imagenets::frames::toTransformStamped(left * model.leftToRight(), child_frame_,
                                             "calibrated/" + d.right_camera_frame, msg->header.stamp)};
+  if (!d.mono_camera.frame.empty()) {
+    t.push_back(imagenets::frames::toTransformStamped(model.headBase().inverse() * model.monoCamera(head), child_frame_,
+                                                      "calibrated/" + d.mono_camera.frame, msg->header.stamp));
+  }
   tf_.sendTransform(t);
 }
 

@@ -305,6 +305,10 @@ void emitSample(YAML::Emitter& out, const Result& r, size_t i) {
   emitObservation(out, s.left);
   out << YAML::Key << "right" << YAML::Value;
   emitObservation(out, s.right);
+  if (s.mono.found || !s.mono.reason.empty()) {  // (a stereo calibration's file has none)
+    out << YAML::Key << "mono" << YAML::Value;
+    emitObservation(out, s.mono);
+  }
   out << YAML::Key << "valid" << YAML::Value << s.valid;
   out << YAML::Key << "fusion" << YAML::Value << s.fusion;
   out << YAML::Key << "reason" << YAML::Value << s.reason;
@@ -457,6 +461,7 @@ void readSamples(const Reader& rd, const YAML::Node& root, Result& r) {
     s.head_q = rd.numbers(n, "head_q", w, 0);
     s.left = rd.observation(n, "left", w);
     s.right = rd.observation(n, "right", w);
+    if (n["mono"]) s.mono = rd.observation(n, "mono", w);
     s.valid = n["valid"] && n["valid"].as<bool>();
     if (n["fusion"]) s.fusion = n["fusion"].as<std::string>();
     if (n["reason"]) s.reason = n["reason"].as<std::string>();

@@ -66,7 +66,7 @@ TEST(Observability, APosteriorNotClearlyBelowThePriorIsNamedAndAnUnseenDirection
 
 struct PlanObservability : ::testing::Test {
   RobotModel model{robot_description::loadRobotDescription(robot_description::exampleRobotDescriptionPath())};
-  StereoCameras cameras = *stereoCamerasOf(model.description(), nullptr);
+  CameraModels cameras = *cameraModelsOf(model.description(), nullptr);
 
   // `count` poses that turn only arm joint `joint` (0-based) about the calibration pose, the head
   // following the marker.

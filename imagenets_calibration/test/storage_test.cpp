@@ -78,6 +78,30 @@ TEST_F(StorageTest, RoundTripAndReplayReproduceTheResult) {
   EXPECT_EQ(replay.used, c.result.used);
 }
 
+TEST_F(StorageTest, AMonoCamerasObservationsAreKeptAndAStereoFileHasNone) {
+  StoredCalibration c;
+  c.result = someResult();
+  c.result.samples[0].mono = c.result.samples[0].left;
+  c.result.samples[0].mono.threshold = 77;
+  c.result.samples[2].mono.reason = "no tag";
+  const std::string path = (dir / "mono.yaml").string();
+  EXPECT_EQ(saveCalibration(c, path), "");
+  const StoredCalibration loaded = loadCalibration(path);
+  ASSERT_EQ(loaded.result.samples.size(), 3u);
+  EXPECT_TRUE(loaded.result.samples[0].mono.found);
+  EXPECT_EQ(loaded.result.samples[0].mono.threshold, 77);
+  EXPECT_TRUE(loaded.result.samples[0].mono.pose.isApprox(c.result.samples[0].left.pose, 1e-12));
+  EXPECT_FALSE(loaded.result.samples[1].mono.found);
+  EXPECT_EQ(loaded.result.samples[2].mono.reason, "no tag");
+  // A stereo calibration's file names no mono observation.
+  c.result = someResult();
+  const std::string stereo = (dir / "stereo.yaml").string();
+  EXPECT_EQ(saveCalibration(c, stereo), "");
+  std::ifstream in(stereo);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("mono:"), std::string::npos);
+}
+
 TEST_F(StorageTest, PreviousFileIsArchivedAndNoTemporaryFileRemains) {
   StoredCalibration c;
   c.result = someResult();

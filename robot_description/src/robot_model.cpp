@@ -158,8 +158,8 @@ void checkUrdfFormKeys(const YAML::Node& root, const std::string& w) {
                       "home_deg", "link_prefix", "controller"},
                 w + ": arm");
   onlyKnownKeys(need(arm, "marker", w + ": arm"), {"link", "size"}, w + ": arm.marker");
-  onlyKnownKeys(head, {"tip_link", "stereo_camera", "mono_camera", "calibration_pose_deg", "home_deg", "link_prefix",
-                       "controller"},
+  onlyKnownKeys(head, {"tip_link", "stereo_camera", "mono_camera", "calibration_camera", "calibration_pose_deg", "home_deg",
+                       "link_prefix", "controller"},
                 w + ": head");
   onlyKnownKeys(need(head, "stereo_camera", w + ": head"),
                 {"left_link", "right_link", "width", "height", "left_camera_info", "right_camera_info", "namespace"},
@@ -223,6 +223,9 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
     d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
     readInterfaces(root, w, d);
     readFreeParams(root, d);
+    if (head["calibration_camera"]) {
+      d = withCalibrationCamera(d, head["calibration_camera"].as<std::string>(), w + ": head.calibration_camera");
+    }
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());
   }
@@ -230,6 +233,17 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
 }
 
 }  // namespace
+
+RobotDescription withCalibrationCamera(RobotDescription d, const std::string& camera, const std::string& where) {
+  if (camera != "stereo" && camera != "mono") {
+    throw std::runtime_error(where + ": '" + camera + "' is no calibration camera (expected 'stereo' or 'mono')");
+  }
+  if (camera == "mono" && d.mono_camera.frame.empty()) {
+    throw std::runtime_error(where + ": 'mono', but " + d.source + " gives the head no mono camera (head.mono_camera)");
+  }
+  d.calibration_camera = camera;
+  return d;
+}
 
 ChainJoint fromDh(const DhJoint& j) {
   ChainJoint c;
@@ -380,6 +394,9 @@ RobotDescription loadRobotDescription(const std::string& path) {
     d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
     readInterfaces(root, w, d);
     readFreeParams(root, d);
+    if (head["calibration_camera"]) {
+      d = withCalibrationCamera(d, head["calibration_camera"].as<std::string>(), w + ": head.calibration_camera");
+    }
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());
   }
@@ -460,6 +477,10 @@ Eigen::Isometry3d RobotModel::leftCamera(const std::vector<double>& q) const {
 }
 Eigen::Isometry3d RobotModel::monoCamera(const std::vector<double>& q) const {
   return d_.head.end(q) * d_.mono_camera.pose;
+}
+
+Eigen::Isometry3d RobotModel::calibrationCamera(const std::vector<double>& q) const {
+  return d_.calibration_camera == "mono" ? monoCamera(q) : leftCamera(q);
 }
 Eigen::Isometry3d RobotModel::leftToRight() const {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <random>
 
+#include <boost/filesystem.hpp>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
@@ -175,6 +176,41 @@ TEST(UrdfKinematics, AMonoCameraOnTheHeadIsReadBesideTheStereoPair) {
   EXPECT_LT(Eigen::AngleAxisd(in_left.linear()).angle(), 1e-12);
   // A description without one has none.
   EXPECT_TRUE(loadRobotDescription("config/six_axis/robot.yaml").mono_camera.frame.empty());
+}
+
+TEST(UrdfKinematics, TheCalibrationCameraIsTheStereoPairUnlessTheMonoOneIsChosen) {
+  const RobotDescription d = loadRobotDescription("config/mobile_manipulator/robot.yaml");
+  EXPECT_EQ(d.calibration_camera, "stereo");
+  const std::vector<double> head{0.3, -0.2};
+  EXPECT_TRUE(RobotModel(d).calibrationCamera(head).isApprox(RobotModel(d).leftCamera(head), 1e-12));
+  const RobotModel mono(withCalibrationCamera(d, "mono", "~calibration_camera"));
+  EXPECT_EQ(mono.description().calibration_camera, "mono");
+  EXPECT_TRUE(mono.calibrationCamera(head).isApprox(mono.monoCamera(head), 1e-12));
+  EXPECT_NE(messageOf([&] { withCalibrationCamera(d, "left", "~calibration_camera"); })
+                .find("~calibration_camera: 'left' is no calibration camera (expected 'stereo' or 'mono')"),
+            std::string::npos);
+  const RobotDescription six = loadRobotDescription("config/six_axis/robot.yaml");
+  EXPECT_NE(messageOf([&] { withCalibrationCamera(six, "mono", "x.yaml: head.calibration_camera"); })
+                .find("x.yaml: head.calibration_camera: 'mono', but " + six.source + " gives the head no mono camera"),
+            std::string::npos);
+  // The key in a description file.
+  const std::string path = "/tmp/urdf_kinematics_test_mono_" + std::to_string(::getpid()) + ".yaml";
+  {
+    std::ifstream in("config/mobile_manipulator/robot.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string key = "  calibration_pose_deg: [10.2, 25.4]";
+    ASSERT_NE(text.find(key), std::string::npos);
+    text.replace(text.find(key), 0, "  calibration_camera: mono\n");
+    // (The URDF is read; the camera_info files only named.)
+    // (The description's paths are relative to its folder.)
+    text.replace(text.find("urdf: robot.urdf"), 16,
+                 "urdf: " + boost::filesystem::relative(boost::filesystem::absolute("config/mobile_manipulator/robot.urdf"),
+                                                        boost::filesystem::path(path).parent_path())
+                                .string());
+    std::ofstream(path) << text;
+  }
+  EXPECT_EQ(loadRobotDescription(path).calibration_camera, "mono");
+  std::remove(path.c_str());
 }
 
 TEST(UrdfKinematics, WhatDoesNotFitIsNamed) {

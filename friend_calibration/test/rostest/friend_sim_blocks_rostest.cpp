@@ -101,6 +101,30 @@ blocks:
   EXPECT_EQ(r->header.frame_id, "stereo_right_optical_frame");
 }
 
+TEST(FriendSimBlocks, GrabImageGivesOneCamerasImageAfterSettling) {
+  auto exec = netFromText(R"(
+blocks:
+  grab: {type: imagenets/GrabImage, properties: {camera: hand_camera, timeout: 10}}
+)");
+  const RunReport report = exec->run();
+  ASSERT_TRUE(report.ok()) << failures(report);
+  const auto image = exec->output<sensor_msgs::Image>("grab.image");
+  const auto info = exec->output<sensor_msgs::CameraInfo>("grab.camera_info");
+  ASSERT_TRUE(image && info);
+  EXPECT_EQ(info->header.stamp, image->header.stamp);
+  EXPECT_EQ(image->width, info->width);
+  EXPECT_EQ(info->header.frame_id, image->header.frame_id);
+  EXPECT_FALSE(image->header.frame_id.empty());
+  // A camera that does not exist is named.
+  auto silent = netFromText(R"(
+blocks:
+  grab: {type: imagenets/GrabImage, properties: {camera: no_such_camera, timeout: 1}}
+)");
+  const RunReport failed = silent->run();
+  ASSERT_FALSE(failed.ok());
+  EXPECT_NE(failures(failed).find("no publisher on '/no_such_camera/image_raw'"), std::string::npos) << failures(failed);
+}
+
 TEST(FriendSimBlocks, SensorsAndWorldModel) {
   auto exec = netFromText(R"(
 blocks:

@@ -8,8 +8,11 @@
 // twice that many, 5), how many of them at least used (~min_used_fraction, 0.9) and how close to
 // the identifiable truth (~max_error_mm, ~max_error_deg) and to the effective one
 // (~max_effective_error_mm, ~max_effective_error_deg: arm joint 1's offset, which no image sees,
-// moves it by its angle times the camera's distance from that axis). With ~bad_target_node, a
-// node given a bad target file must name it in every answer.
+// moves it by its angle times the camera's distance from that axis). ~cameras (2: the stereo pair;
+// 1: a mono camera) is how many detections a sample holds at most, ~trigger the camera's trigger
+// service (/stereo/trigger). With ~bad_target_node, a node given a bad target file must name it in
+// every answer; with ~wrong_cameras_node, a node whose sample net measures with other cameras than
+// its calibration camera.
 #include <cmath>
 #include <cstdio>
 
@@ -47,12 +50,14 @@ TEST(TargetCalibration, TheJointMethodFindsTheFixedPointFromTheTargetsCorners) {
   const std::string robot = pnh.param<std::string>("robot", "FRIEND");
   const int redundancy = pnh.param("redundancy", 5);
   const double min_used = pnh.param("min_used_fraction", 0.9);
+  const int cameras = pnh.param("cameras", 2);
+  const std::string trigger = pnh.param<std::string>("trigger", "/stereo/trigger");
   const auto target = imagenets::target::TargetDescription::load(target_file);
   const auto corners = target.corners();
   ASSERT_TRUE(ros::service::waitForService(node + "/calibrate", ros::Duration(60)));
   // The node may answer before the simulator runs: the first samples would find no joint states
   // or no camera. Calibrate once it publishes joint states and renders on trigger.
-  ASSERT_TRUE(ros::service::waitForService("/stereo/trigger", ros::Duration(60)));
+  ASSERT_TRUE(ros::service::waitForService(trigger, ros::Duration(60)));
   ASSERT_TRUE(ros::topic::waitForMessage<sensor_msgs::JointState>("/joint_states", ros::Duration(60)));
   imagenets_calibration_msgs::Calibrate srv;
   srv.request.redundancy = redundancy;
@@ -71,8 +76,10 @@ TEST(TargetCalibration, TheJointMethodFindsTheFixedPointFromTheTargetsCorners) {
   int observations = 0;
   size_t fewest = corners.size(), most = 0;
   for (const auto& s : stored.result.samples) {
-    for (const auto* o : {&s.left, &s.right}) {
+    int detections = 0;
+    for (const auto* o : {&s.left, &s.right, &s.mono}) {
       if (!o->found) continue;
+      ++detections;
       ++observations;
       ASSERT_EQ(o->point_ids.size(), o->points.size());
       ASSERT_EQ(o->object_points.size(), o->points.size());
@@ -84,8 +91,9 @@ TEST(TargetCalibration, TheJointMethodFindsTheFixedPointFromTheTargetsCorners) {
         EXPECT_LT((o->object_points[k] - c->second).norm(), 1e-9) << "corner " << c->first;
       }
     }
+    EXPECT_LE(detections, cameras);  // a mono calibration measures with its one camera only
   }
-  EXPECT_GE(observations, 2 * res.samples_used);
+  EXPECT_GE(observations, cameras * res.samples_used);
   EXPECT_GE(static_cast<int>(fewest), min_points);
 
   // Against the simulator's truth (true_error.yaml): the effective fixed point (pan offset folded
@@ -124,6 +132,18 @@ TEST(TargetCalibration, ABadTargetFileIsNamedInTheAnswer) {
   std::string node, expected;
   if (!ros::NodeHandle("~").getParam("bad_target_node", node)) GTEST_SKIP() << "no ~bad_target_node in this .test";
   ASSERT_TRUE(ros::NodeHandle("~").getParam("bad_target_message", expected));
+  ASSERT_TRUE(ros::service::waitForService(node + "/calibrate", ros::Duration(60)));
+  imagenets_calibration_msgs::Calibrate srv;
+  srv.request.redundancy = 3;
+  ASSERT_TRUE(ros::service::call(node + "/calibrate", srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find(expected), std::string::npos) << srv.response.message;
+}
+
+TEST(TargetCalibration, ANodeWhoseSampleNetIsOfOtherCamerasSaysSo) {
+  std::string node, expected;
+  if (!ros::NodeHandle("~").getParam("wrong_cameras_node", node)) GTEST_SKIP() << "no ~wrong_cameras_node in this .test";
+  ASSERT_TRUE(ros::NodeHandle("~").getParam("wrong_cameras_message", expected));
   ASSERT_TRUE(ros::service::waitForService(node + "/calibrate", ros::Duration(60)));
   imagenets_calibration_msgs::Calibrate srv;
   srv.request.redundancy = 3;

@@ -47,13 +47,22 @@ struct MarkerObservation {
 struct Sample {
   // Raw.
   std::vector<double> arm_q, head_q;  // joint_states (encoder readings) when the images were taken
-  MarkerObservation left, right;      // right: in the right camera's own frame
+  MarkerObservation left, right;      // the stereo pair's; right: in the right camera's own frame
+  MarkerObservation mono;             // the head's mono camera's (calibration camera "mono")
   double stamp = 0.0;                 // image time, s
+  // Camera i's observation (kLeft, kRight, kMono), each in its camera's own frame.
+  static constexpr int kLeft = 0, kRight = 1, kMono = 2, kCameras = 3;
+  static const char* cameraName(int i) { return i == kLeft ? "left" : i == kRight ? "right" : "mono"; }
+  const MarkerObservation& observation(int i) const { return i == kLeft ? left : i == kRight ? right : mono; }
+  MarkerObservation& observation(int i) { return i == kLeft ? left : i == kRight ? right : mono; }
+  // Whether any camera found the target.
+  bool seen() const { return left.found || right.found || mono.found; }
   // Derived (solveSample).
   bool valid = false;
   std::string reason;                 // why invalid, or which fusion source was used
-  std::string fusion;                 // "both", "left", "right" or "none"
-  Eigen::Isometry3d marker_in_left = Eigen::Isometry3d::Identity();  // fused
+  std::string fusion;                 // "both", "left", "right", "mono" or "none"
+  // The target in the calibration camera's frame: the left one (fused with the right), or the mono one.
+  Eigen::Isometry3d marker_in_left = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d fixed_point = Eigen::Isometry3d::Identity();     // this sample's estimate
 };
 
@@ -101,13 +110,15 @@ Fusion fuseStereoDetections(const std::optional<Eigen::Isometry3d>& left,
                             const std::optional<Eigen::Isometry3d>& right_in_left, const FusionLimits& limits);
 // Base -> left optical frame: marker in base composed with the inverted marker-in-camera pose.
 Eigen::Isometry3d leftCameraInRobot(const Eigen::Isometry3d& marker_in_robot, const Eigen::Isometry3d& marker_in_left);
-// Base -> head_link_0: the camera pose moved back through the head's DH chain at (pan, tilt).
+// Base -> head_link_0: the calibration camera's pose moved back through the head's chain at (pan, tilt).
 Eigen::Isometry3d pthFixedPoint(const RobotModel& model, const Eigen::Isometry3d& left_camera_in_robot,
                                 const std::vector<double>& head_q);
-// The nominal chain head_link_0 -> left optical frame at (pan, tilt).
+// The nominal chain head_link_0 -> the calibration camera's optical frame (the left one of the
+// pair, or the mono camera: the description's calibration_camera) at (pan, tilt).
 Eigen::Isometry3d headChain(const RobotModel& model, const std::vector<double>& head_q);
 
-// Runs the chain on one sample's raw data; sets valid / reason / fusion / marker_in_left /
+// Runs the chain on one sample's raw data (the stereo pair's observations, fused, or the mono
+// camera's, as the description's calibration_camera says); sets valid / reason / fusion / marker_in_left /
 // fixed_point. `marker_offset`: TCP -> marker to use (nominal when not given).
 void solveSample(const RobotModel& model, Sample& sample, const FusionLimits& limits,
                  const std::optional<Eigen::Isometry3d>& marker_offset = std::nullopt);
@@ -194,7 +205,7 @@ Result combineRedundantSamples(std::vector<Sample> samples, const CombineOptions
 Result solveJointly(const RobotModel& model, const Result& paper, const FusionLimits& limits);
 
 // The joint solution refined by the pixel-level bundle adjustment (bundle_adjustment.h) with the
-// description's stereo camera models, with its covariance; unchanged (the message says why) when
+// description's calibration camera models (the stereo pair or the mono camera), with its covariance; unchanged (the message says why) when
 // the samples carry no points that fit those models.
 void refineAtPixelLevel(const RobotModel& model, Result& joint, const FusionLimits& limits);
 

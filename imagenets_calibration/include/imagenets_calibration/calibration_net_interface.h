@@ -27,7 +27,7 @@
 namespace imagenets_calibration {
 
 // One camera's image of a sample and its calibration; `camera` as the sample net names it
-// ("left", "right").
+// ("left", "right", "mono").
 struct CameraImage {
   std::string camera;
   sensor_msgs::ImageConstPtr image;
@@ -36,7 +36,7 @@ struct CameraImage {
 using CameraImages = std::vector<CameraImage>;
 
 // The sample's observation in the camera the sample net names `camera`: "right" the right one,
-// any other the left (first) one.
+// "mono" the mono camera's, any other the left (first) one.
 const MarkerObservation& observationOf(const Sample& sample, const std::string& camera);
 
 class CalibrationNetInterface {

@@ -21,7 +21,7 @@
 //   ~markers            visualization_msgs/MarkerArray: marker poses of all samples (latched)
 //   ~detections/<camera>/image   bgr8, the detected marker points drawn, per sample as it is
 //                       measured (latched), with ~detections/<camera>/camera_info beside it; the
-//                       cameras are the sample net's `<camera>_image` outputs (left, right)
+//                       cameras are the sample net's `<camera>_image` outputs (left, right, or mono)
 // Parameters (private): net (the calibration net file), replay_net (the sample net of replays),
 //   description, marker, calibration_file, redundancy (5), method (joint), poses_per_loop (joint
 //   method, 2), max_poses (with an uncertainty target and no request max_poses: at most this many
@@ -34,8 +34,11 @@
 //   written whole on success, a failed run leaves the previous bag as it was: bag_recorder.h),
 //   record_camera (the camera namespace the bag names; default the description's stereo
 //   namespace, else "stereo"), server_timeout (s the start-up waits for the controllers the
-//   description names; 10). The robot's controllers and stereo namespace come from its
-//   description (robot_interfaces.h: set on the nets at start-up; a named controller without a
+//   description names; 10), calibration_camera (stereo or mono: the camera measured with; default
+//   the description's head.calibration_camera), sample_net (the sample net run in place of ~net's
+//   own, e.g. config/nets/calibration_sample_mono.yaml with calibration_camera mono; the node
+//   refuses a sample net of other cameras). The robot's controllers and stereo namespace come from
+//   its description (robot_interfaces.h: set on the nets at start-up; a named controller without a
 //   server is an error in the log naming it); the acquisition's other settings (speed, timeouts,
 //   settling) are properties of the sample net's blocks: use ~net for a net with other values.
 #pragma once

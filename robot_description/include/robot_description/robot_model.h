@@ -128,6 +128,9 @@ struct RobotDescription {
   // head last link -> its optical frame, and its camera_info file (absolute path).
   FixedFrame mono_camera;
   std::string mono_camera_info;
+  // The camera a calibration measures the arm's target with (key `head.calibration_camera`):
+  // "stereo" (the pair) or "mono" (head.mono_camera alone; the pixel-level fit needs no stereo).
+  std::string calibration_camera = "stereo";
   // Head poses are empty for a head without joints (cameras on a stand, eye-to-hand).
   std::vector<double> arm_calibration_pose, arm_home, head_calibration_pose, head_home;
   // The robot's ROS interfaces the calibration uses (keys arm.controller, head.controller: their
@@ -155,6 +158,11 @@ struct FreeParams {
 // the description's file, the key and the unknown or inestimable name (with the known ones).
 FreeParams freeParams(const RobotDescription& description);
 
+// The description with `camera` ("stereo" or "mono") as its calibration camera; throws
+// std::runtime_error naming `where` (a file and key, a parameter) and the value when it is neither,
+// or "mono" on a head without a mono camera.
+RobotDescription withCalibrationCamera(RobotDescription description, const std::string& camera, const std::string& where);
+
 // Loads the description; throws std::runtime_error naming the file and the key on bad input.
 RobotDescription loadRobotDescription(const std::string& path);
 // The example robot shipped with this package (config/example/robot.yaml: a 7-joint arm, a
@@ -176,6 +184,8 @@ class RobotModel {
   Eigen::Isometry3d leftCamera(const std::vector<double>& head_q) const;  // base -> left optical
   Eigen::Isometry3d rightCamera(const std::vector<double>& head_q) const; // base -> right optical
   Eigen::Isometry3d monoCamera(const std::vector<double>& head_q) const;  // base -> mono optical
+  // base -> the optical frame of the calibration camera: the left one of the pair, or the mono one.
+  Eigen::Isometry3d calibrationCamera(const std::vector<double>& head_q) const;
   // Right optical frame in the left optical frame (pure translation by the baseline).
   Eigen::Isometry3d leftToRight() const;
 
