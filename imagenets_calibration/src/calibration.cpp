@@ -95,6 +95,48 @@ std::optional<std::vector<double>> placeMarker(const RobotModel& model, std::vec
   return q;
 }
 
+// Whether the whole marker is seen in every image of the calibration's cameras, a margin from
+// their borders, and not too obliquely for the detector (always, without camera models).
+bool markerInView(const RobotModel& model, const CameraModels* cameras, const CalibrationPose& p) {
+  if (!cameras) return true;
+  const auto& d = model.description();
+  const double max_oblique = 50 * M_PI / 180;
+  for (const CalibrationCamera& camera : cameras->cameras) {
+    const double margin = 0.15 * camera.width;
+    const Eigen::Isometry3d m = camera.pose(d.head.end(p.head)).inverse() * model.marker(p.arm);
+    if (-m.linear().col(2).dot(m.translation().normalized()) < std::cos(max_oblique)) return false;
+    for (const auto& corner : markerDefinedPoints(d.marker_size)) {
+      const Eigen::Vector3d pc = m * corner;
+      const Eigen::Vector2d uv = camera.model.project(pc);
+      if (!(pc.z() > 0) || uv.x() < margin || uv.y() < margin || uv.x() > camera.width - margin ||
+          uv.y() > camera.height - margin) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// The first calibration camera's frame moved to the middle of the cameras (between a stereo
+// pair), the head at zero; the left camera's without camera models.
+Eigen::Isometry3d middleCamera(const RobotModel& model, const CameraModels* cameras) {
+  const std::vector<double> zero(model.description().head.joints.size(), 0.0);
+  if (!cameras) return model.leftCamera(zero);
+  const Eigen::Isometry3d head_end = model.description().head.end(zero);
+  Eigen::Isometry3d middle = cameras->cameras.front().pose(head_end);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const CalibrationCamera& c : cameras->cameras) sum += c.pose(head_end).translation();
+  middle.translation() = sum / static_cast<double>(cameras->cameras.size());
+  return middle;
+}
+
+bool withinLimits(const std::vector<robot_description::ChainJoint>& joints, const std::vector<double>& q) {
+  for (size_t j = 0; j < joints.size() && j < q.size(); ++j) {
+    if (q[j] < joints[j].min || q[j] > joints[j].max) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 double angleBetween(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
@@ -127,45 +169,14 @@ std::vector<CalibrationPose> calibrationPoses(const RobotModel& model, int n, co
       {0, 0}, {0.5, 0.5}, {-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}};
   std::string why;
   const auto cameras = cameraModelsOf(d, &why);
-  // Whether the whole marker is seen in every image of the calibration's cameras, a margin from
-  // their borders, and not too obliquely for the detector.
-  auto visible = [&](const CalibrationPose& p) {
-    if (!cameras) return true;
-    const double max_oblique = 50 * M_PI / 180;
-    for (const CalibrationCamera& camera : cameras->cameras) {
-      const double margin = 0.15 * camera.width;
-      const Eigen::Isometry3d m = camera.pose(d.head.end(p.head)).inverse() * model.marker(p.arm);
-      if (-m.linear().col(2).dot(m.translation().normalized()) < std::cos(max_oblique)) return false;
-      for (const auto& corner : markerDefinedPoints(d.marker_size)) {
-        const Eigen::Vector3d pc = m * corner;
-        const Eigen::Vector2d uv = camera.model.project(pc);
-        if (!(pc.z() > 0) || uv.x() < margin || uv.y() < margin || uv.x() > camera.width - margin ||
-            uv.y() > camera.height - margin) {
-          return false;
-        }
-      }
-    }
-    return true;
-  };
-  auto withinLimits = [](const std::vector<robot_description::ChainJoint>& joints, const std::vector<double>& q) {
-    for (size_t j = 0; j < joints.size() && j < q.size(); ++j) {
-      if (q[j] < joints[j].min || q[j] > joints[j].max) return false;
-    }
-    return true;
-  };
+  auto visible = [&](const CalibrationPose& p) { return markerInView(model, cameras ? &*cameras : nullptr, p); };
   const CalibrationCamera* first = cameras ? &cameras->cameras.front() : nullptr;
   const double half_fov_x = first ? std::atan(first->width / 2.0 / first->model.K(0, 0)) : 0.0;
   const double half_fov_y = first ? std::atan(first->height / 2.0 / first->model.K(1, 1)) : 0.0;
   // A head without joints (a camera on a stand) cannot aim: the arm moves the marker to the image
   // position instead, at the depth the arm's variation gives, seen from the middle of the cameras.
   const bool head_aims = !d.head.joints.empty();
-  const Eigen::Isometry3d head_end = d.head.end(std::vector<double>(d.head.joints.size(), 0.0));
-  Eigen::Isometry3d centre_camera = first ? first->pose(head_end) : model.leftCamera(std::vector<double>(d.head.joints.size(), 0.0));
-  if (cameras) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (const CalibrationCamera& c : cameras->cameras) sum += c.pose(head_end).translation();
-    centre_camera.translation() = sum / static_cast<double>(cameras->cameras.size());
-  }
+  const Eigen::Isometry3d centre_camera = middleCamera(model, cameras ? &*cameras : nullptr);
   auto atImagePosition = [&](const std::vector<double>& arm, double fx, double fy) -> std::optional<std::vector<double>> {
     const Eigen::Vector3d m = centre_camera.inverse() * model.marker(arm).translation();
     if (!(m.z() > 0)) return std::nullopt;

@@ -51,7 +51,7 @@ void CalibrationRunWatch::operator()(const imagenets::RunEvent& e) {
 
 void CalibrationRunWatch::onStarted(const imagenets::RunEvent& e) {
   if (!progress_) return;
-  // Stage: the block that started: one of the sample net's (e.g. samples/move_arm, samples/grab)
+  // Stage: the block that started: one of the sample net's (e.g. samples/motion, samples/grab)
   // or, after the samples, one of the calibration net's own (solve).
   const std::string prefix = net_.samplesBlock() + "/";
   const bool in_sample = e.block.rfind(prefix, 0) == 0 && e.block.find('/', prefix.size()) == std::string::npos;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "imagenets/executor.h"
 #include "imagenets/inner_net.h"
 #include "imagenets/net.h"
@@ -21,12 +23,14 @@ std::unique_ptr<imagenets::Executor> shippedNet(const std::string& sample_net) {
   return std::make_unique<imagenets::Executor>(imagenets::Net::build(spec));
 }
 
-// A property of block `block` of the sample net ("" for the top net's).
-std::string property(const imagenets::Executor& exec, const std::string& sub, const std::string& block,
+// A property of block `block` of the sub-net at `path` ("samples/motion": the sample net's motion
+// sub-net; "" for the top net's).
+std::string property(const imagenets::Executor& exec, const std::string& path, const std::string& block,
                      const std::string& name) {
   const imagenets::Executor* net = &exec;
-  if (!sub.empty()) {
-    const auto& node = exec.net().node(exec.net().findNode(sub));
+  std::stringstream subs(path);
+  for (std::string sub; std::getline(subs, sub, '/');) {
+    const auto& node = net->net().node(net->net().findNode(sub));
     net = dynamic_cast<const imagenets::InnerNet&>(*node.block).innerExecutor();
   }
   const int i = net->net().findNode(block);
@@ -45,21 +49,21 @@ robot_description::RobotDescription myRobot() {
 
 TEST(RobotInterfaces, TheLiveNetMovesThroughTheRobotsControllersAndReadsItsCameras) {
   auto exec = shippedNet("calibration_sample.yaml");
-  EXPECT_EQ(property(*exec, "samples", "move_arm", "action"), "arm_controller/follow_joint_trajectory");
+  EXPECT_EQ(property(*exec, "samples/motion", "move_arm", "action"), "arm_controller/follow_joint_trajectory");
   const auto lines = applyRobotInterfaces(myRobot(), *exec);
   EXPECT_EQ(lines, (std::vector<std::string>{
-                       "arm.controller 'arm_with_torso_controller/follow_joint_trajectory': samples/move_arm_approach, "
-                       "samples/move_arm",
-                       "head.controller '/robot/head_controller/follow_joint_trajectory': samples/move_head",
+                       "arm.controller 'arm_with_torso_controller/follow_joint_trajectory': samples/motion/move_arm_approach, "
+                       "samples/motion/move_arm",
+                       "head.controller '/robot/head_controller/follow_joint_trajectory': samples/motion/move_head",
                        // the plan block reads a bag when told to: its topics too
                        "head.stereo_camera.namespace 'head_camera/stereo': samples/grab, plan"}));
-  EXPECT_EQ(property(*exec, "samples", "move_arm_approach", "action"), "arm_with_torso_controller/follow_joint_trajectory");
-  EXPECT_EQ(property(*exec, "samples", "move_arm", "action"), "arm_with_torso_controller/follow_joint_trajectory");
-  EXPECT_EQ(property(*exec, "samples", "move_head", "action"), "/robot/head_controller/follow_joint_trajectory");
+  EXPECT_EQ(property(*exec, "samples/motion", "move_arm_approach", "action"), "arm_with_torso_controller/follow_joint_trajectory");
+  EXPECT_EQ(property(*exec, "samples/motion", "move_arm", "action"), "arm_with_torso_controller/follow_joint_trajectory");
+  EXPECT_EQ(property(*exec, "samples/motion", "move_head", "action"), "/robot/head_controller/follow_joint_trajectory");
   EXPECT_EQ(property(*exec, "samples", "grab", "camera"), "head_camera/stereo");
   EXPECT_EQ(property(*exec, "", "plan", "bag_camera"), "head_camera/stereo");
   // The blocks' other settings stay.
-  EXPECT_EQ(property(*exec, "samples", "move_head", "max_velocity"), "0.9");
+  EXPECT_EQ(property(*exec, "samples/motion", "move_head", "max_velocity"), "0.9");
 }
 
 TEST(RobotInterfaces, WhatTheConfigDoesNotNameKeepsTheNetsNames) {
@@ -67,8 +71,8 @@ TEST(RobotInterfaces, WhatTheConfigDoesNotNameKeepsTheNetsNames) {
   robot_description::RobotDescription d = myRobot();
   d.arm_controller = d.stereo_namespace = "";
   EXPECT_EQ(applyRobotInterfaces(d, *exec).size(), 1u);
-  EXPECT_EQ(property(*exec, "samples", "move_arm", "action"), "arm_controller/follow_joint_trajectory");
-  EXPECT_EQ(property(*exec, "samples", "move_head", "action"), "/robot/head_controller/follow_joint_trajectory");
+  EXPECT_EQ(property(*exec, "samples/motion", "move_arm", "action"), "arm_controller/follow_joint_trajectory");
+  EXPECT_EQ(property(*exec, "samples/motion", "move_head", "action"), "/robot/head_controller/follow_joint_trajectory");
   EXPECT_EQ(property(*exec, "samples", "grab", "camera"), "stereo");
   EXPECT_TRUE(applyRobotInterfaces(robot_description::RobotDescription{}, *exec).empty());
 }
