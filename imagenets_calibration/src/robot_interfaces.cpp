@@ -27,6 +27,7 @@ std::vector<RobotInterface> robotInterfaces(const robot_description::RobotDescri
        {{"imagenets/GrabStereoPair", "camera"},
         {"imagenets/CalibrationPlan", "bag_camera"},
         {"imagenets/BagCalibrationSample", "bag_camera"}}},
+      {"head.mono_camera.namespace", c.mono_namespace, "head_camera", {{"imagenets/GrabImage", "camera"}}},
   };
 }
 

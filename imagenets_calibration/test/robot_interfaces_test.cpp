@@ -77,6 +77,18 @@ TEST(RobotInterfaces, WhatTheConfigDoesNotNameKeepsTheNetsNames) {
   EXPECT_TRUE(applyRobotInterfaces(robot_description::RobotDescription{}, *exec).empty());
 }
 
+// The one-camera sample net reads the mono camera the config names; the stereo name has no block.
+TEST(RobotInterfaces, TheMonoNetReadsTheRobotsMonoCamera) {
+  auto exec = shippedNet("calibration_sample_mono.yaml");
+  robot_description::RobotDescription d = myRobot();
+  d.mono_namespace = "rgb_camera";
+  const auto lines = applyRobotInterfaces(d, *exec);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_EQ(lines[3], "head.mono_camera.namespace 'rgb_camera': samples/grab");
+  EXPECT_EQ(property(*exec, "samples", "grab", "camera"), "rgb_camera");
+  EXPECT_EQ(property(*exec, "samples/motion", "move_arm", "action"), "arm_with_torso_controller/follow_joint_trajectory");
+}
+
 // Offline the bag's samples are found under the robot's camera topics; the bag net moves nothing.
 TEST(RobotInterfaces, TheBagNetReadsTheRobotsCameraTopics) {
   auto exec = shippedNet("calibration_sample_bag.yaml");

@@ -94,6 +94,9 @@ void readInterfaces(const YAML::Node& root, const std::string& w, RobotDescripti
   readInterfaceName(root["arm"], "controller", w + ": arm", d.arm_controller);
   readInterfaceName(root["head"], "controller", w + ": head", d.head_controller);
   if (root["head"]) readInterfaceName(root["head"]["stereo_camera"], "namespace", w + ": head.stereo_camera", d.stereo_namespace);
+  if (root["head"] && root["head"]["mono_camera"]) {
+    readInterfaceName(root["head"]["mono_camera"], "namespace", w + ": head.mono_camera", d.mono_namespace);
+  }
 }
 
 std::string& urdfFileForAll() {
@@ -164,7 +167,7 @@ void checkUrdfFormKeys(const YAML::Node& root, const std::string& w) {
   onlyKnownKeys(need(head, "stereo_camera", w + ": head"),
                 {"left_link", "right_link", "width", "height", "left_camera_info", "right_camera_info", "namespace"},
                 w + ": head.stereo_camera");
-  if (head["mono_camera"]) onlyKnownKeys(head["mono_camera"], {"link", "camera_info"}, w + ": head.mono_camera");
+  if (head["mono_camera"]) onlyKnownKeys(head["mono_camera"], {"link", "camera_info", "namespace"}, w + ": head.mono_camera");
 }
 
 // A description whose kinematics are a URDF's (urdf_kinematics.h): the URDF (loadRobotDescription)

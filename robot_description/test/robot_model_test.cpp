@@ -247,12 +247,13 @@ TEST(RobotModel, ACalibrationConfigNamesTheRobotsControllersAndCameraTopics) {
   EXPECT_EQ(d.arm_controller, "arm_controller/follow_joint_trajectory");
   EXPECT_EQ(d.head_controller, "head_controller/follow_joint_trajectory");
   EXPECT_EQ(d.stereo_namespace, "stereo");
+  EXPECT_EQ(d.mono_namespace, "head_camera");
   EXPECT_EQ(d.arm.joints.size(), 7u);
   EXPECT_EQ(d.mono_camera.frame, "head_camera_rgb_optical_frame");
   // The same robot with its URDF named (robot.yaml) and FRIEND's DH form name none.
   for (const std::string& file : {dir + "mobile_manipulator/robot.yaml", dir + "example/robot.yaml"}) {
     const RobotDescription other = loadRobotDescription(file);
-    EXPECT_EQ(other.arm_controller + other.head_controller + other.stereo_namespace, "") << file;
+    EXPECT_EQ(other.arm_controller + other.head_controller + other.stereo_namespace + other.mono_namespace, "") << file;
   }
 }
 

@@ -135,9 +135,10 @@ struct RobotDescription {
   std::vector<double> arm_calibration_pose, arm_home, head_calibration_pose, head_home;
   // The robot's ROS interfaces the calibration uses (keys arm.controller, head.controller: their
   // control_msgs/FollowJointTrajectory actions; head.stereo_camera.namespace: NS of the stereo
-  // pair's NS/{left,right}/{image_raw,camera_info}); "" when the description does not name them
+  // pair's NS/{left,right}/{image_raw,camera_info}; head.mono_camera.namespace: NS of the mono
+  // camera's NS/{image_raw,camera_info}); "" when the description does not name them
   // (then the calibration nets' own names hold). Valid ROS graph names, checked at load.
-  std::string arm_controller, head_controller, stereo_namespace;
+  std::string arm_controller, head_controller, stereo_namespace, mono_namespace;
   // What a calibration estimates (key `free_params`, as Fetch's robot_calibration names them;
   // freeParams below); empty: everything it can.
   std::vector<std::string> free_params;
