@@ -2,14 +2,11 @@
 // previous calibration file as it was (see calibration_bad_input.test). The test starts the node
 // itself, once per case, and reads what it prints (a message on /rosout sent while the node starts
 // could be lost before this test's connection is up).
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,17 +17,11 @@
 #include "imagenets/package_file.h"
 #include "imagenets/testing/rostest_util.h"
 #include "imagenets_calibration_msgs/Calibrate.h"
+#include "files_and_processes.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string readFile(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 class BadInput : public ::testing::Test {
  protected:
@@ -41,7 +32,7 @@ class BadInput : public ::testing::Test {
     ASSERT_FALSE(previous_.empty());
   }
   void TearDown() override {
-    stopNode();
+    node_process_.stop();
     fs::remove_all(dir_);
   }
 
@@ -57,20 +48,8 @@ class BadInput : public ::testing::Test {
                                   "_marker:=" + imagenets::packageFile("imagenets_vision", "config/markers/gripper.yaml"),
                                   "_net:=" + imagenets::packageFile("imagenets_calibration", "config/nets/calibration.yaml")};
     args.insert(args.end(), extra.begin(), extra.end());
-    pid_ = fork();
-    if (pid_ == 0) {
-      FILE* log = std::fopen(log_.c_str(), "w");
-      if (log) {
-        dup2(fileno(log), STDOUT_FILENO);
-        dup2(fileno(log), STDERR_FILENO);
-      }
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      execvp(argv[0], argv.data());
-      _exit(127);
-    }
-    ASSERT_GT(pid_, 0);
+    node_process_.start(args, log_);
+    ASSERT_GT(node_process_.pid(), 0);
   }
   // Waits until the log holds `text`; the log.
   std::string logWith(const std::string& text, double seconds) {
@@ -83,26 +62,10 @@ class BadInput : public ::testing::Test {
         seconds);
     return log;
   }
-  // The node's exit status once it ended by itself within `seconds` (-1: still running).
-  int exitStatus(double seconds) {
-    int status = 0;
-    const bool ended = waitFor([&] { return waitpid(pid_, &status, WNOHANG) == pid_; }, seconds);
-    if (!ended) return -1;
-    pid_ = -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-  }
-  void stopNode() {
-    if (pid_ <= 0) return;
-    kill(pid_, SIGINT);
-    for (int i = 0; i < 300 && waitpid(pid_, nullptr, WNOHANG) != pid_; ++i) ros::WallDuration(0.1).sleep();
-    kill(pid_, SIGKILL);
-    waitpid(pid_, nullptr, 0);
-    pid_ = -1;
-  }
 
   fs::path dir_;
   std::string previous_, file_, log_, node_;
-  pid_t pid_ = -1;
+  ChildProcess node_process_;
 };
 
 // The mobile manipulator's calibration.yaml with `from` replaced by `to`, in the temporary folder
@@ -156,7 +119,7 @@ TEST_F(BadInput, AUrdfThatDoesNotParseNamesTheParameterAndTheParsersReason) {
   // /bad_urdf/robot_description (the .test sets it): cut short in the middle of a tag.
   startNode("bad_urdf", imagenets::packageFile("robot_description", "config/mobile_manipulator/calibration.yaml"),
             {"robot_description:=/bad_urdf/robot_description"});
-  const int status = exitStatus(60);
+  const int status = node_process_.exitStatus(60);
   const std::string log = readFile(log_);
   EXPECT_GT(status, 0) << log;
   EXPECT_NE(log.find("parameter /bad_urdf/robot_description: not a valid URDF: Failed to read Element name"), std::string::npos) << log;

@@ -1,10 +1,8 @@
 // rostest: a live calibration recorded into a rosbag, then calibrated from the bag offline with
 // `imagenets calibrate --bag` (no master): the same result to 1e-9 (see friend_calibration_bag.test).
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -12,26 +10,9 @@
 #include "imagenets_calibration/storage.h"
 #include "imagenets_calibration_msgs/Calibrate.h"
 #include "imagenets/testing/rostest_util.h"
+#include "files_and_processes.h"
 
 namespace {
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `command` in a shell; its exit status and what it printed (stdout and stderr).
-int run(const std::string& command, std::string* output) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return -1;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output->append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 // The node's default calibration (redundancy 5, joint method), as a user asks for it.
 imagenets_calibration_msgs::Calibrate::Response calibrate() {

@@ -2,14 +2,10 @@
 // empty) says so, naming the file, publishes the NOMINAL fixed point and serves requests. The test
 // starts the node itself, once per file, and reads what it prints (a message on /rosout sent while
 // the node starts could be lost before its connection to this test is up).
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -20,17 +16,11 @@
 #include "imagenets_calibration_msgs/Calibrate.h"
 #include "imagenets/testing/rostest_util.h"
 #include "imagenets/package_file.h"
+#include "files_and_processes.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string readFile(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 class DamagedCalibrationFile : public ::testing::Test {
  protected:
@@ -41,7 +31,7 @@ class DamagedCalibrationFile : public ::testing::Test {
     ASSERT_NE(good_.find("\ncrc32: "), std::string::npos);
   }
   void TearDown() override {
-    stopNode();
+    node_process_.stop();
     fs::remove_all(dir_);
   }
 
@@ -51,31 +41,14 @@ class DamagedCalibrationFile : public ::testing::Test {
     std::ofstream(file_, std::ios::binary) << content;
     log_ = (dir_ / (name + ".log")).string();
     node_name_ = "/startup_" + name;
-    pid_ = fork();
-    if (pid_ == 0) {
-      FILE* log = std::fopen(log_.c_str(), "w");
-      if (log) {
-        dup2(fileno(log), STDOUT_FILENO);
-        dup2(fileno(log), STDERR_FILENO);
-      }
-      // Line-buffered: the log holds the node's INFO lines (stdout) by the time it answers.
-      execlp("stdbuf", "stdbuf", "-oL", IMAGENETS_CALIBRATION_NODE, ("__name:=" + node_name_.substr(1)).c_str(),
-             ("_calibration_file:=" + file_).c_str(), "_server_timeout:=1.0",
-             ("_description:=" + imagenets::packageFile("friend_description", "config/robot.yaml")).c_str(),
-             ("_marker:=" + imagenets::packageFile("imagenets_vision", "config/markers/gripper.yaml")).c_str(),
-             ("_net:=" + imagenets::packageFile("friend_calibration", "config/nets/calibration.yaml")).c_str(),
-             static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    ASSERT_GT(pid_, 0);
-  }
-  void stopNode() {
-    if (pid_ <= 0) return;
-    kill(pid_, SIGINT);
-    for (int i = 0; i < 300 && waitpid(pid_, nullptr, WNOHANG) != pid_; ++i) ros::WallDuration(0.1).sleep();
-    kill(pid_, SIGKILL);
-    waitpid(pid_, nullptr, 0);
-    pid_ = -1;
+    // Line-buffered: the log holds the node's INFO lines (stdout) by the time it answers.
+    node_process_.start({"stdbuf", "-oL", IMAGENETS_CALIBRATION_NODE, "__name:=" + node_name_.substr(1),
+                         "_calibration_file:=" + file_, "_server_timeout:=1.0",
+                         "_description:=" + imagenets::packageFile("friend_description", "config/robot.yaml"),
+                         "_marker:=" + imagenets::packageFile("imagenets_vision", "config/markers/gripper.yaml"),
+                         "_net:=" + imagenets::packageFile("friend_calibration", "config/nets/calibration.yaml")},
+                        log_);
+    ASSERT_GT(node_process_.pid(), 0);
   }
 
   // The node's start-up: the error names the file and says the nominal frame is published; the
@@ -115,7 +88,7 @@ class DamagedCalibrationFile : public ::testing::Test {
 
   fs::path dir_;
   std::string good_, file_, log_, node_name_;
-  pid_t pid_ = -1;
+  ChildProcess node_process_;
 };
 
 TEST_F(DamagedCalibrationFile, CutShortBetweenTwoLines) {

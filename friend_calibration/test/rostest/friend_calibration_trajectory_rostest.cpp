@@ -2,8 +2,6 @@
 // the generic nets of imagenets_calibration (see friend_calibration_trajectory.test).
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 #include <ros/master.h>
@@ -14,6 +12,7 @@
 #include "imagenets_calibration/calibration.h"
 #include "imagenets_calibration_msgs/Calibrate.h"
 #include "imagenets/testing/rostest_util.h"
+#include "files_and_processes.h"
 #include "robot_description/robot_model.h"
 
 namespace {
@@ -21,13 +20,6 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 // The calibration's targets for one run (joint method, redundancy 5), as on the six-axis robot.
 constexpr double kTargetMm = 0.5, kTargetDeg = 0.05;
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The node's default calibration (redundancy 5, joint method), as a user asks for it.
 imagenets_calibration_msgs::Calibrate::Response calibrate() {

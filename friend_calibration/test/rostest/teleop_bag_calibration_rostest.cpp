@@ -7,7 +7,6 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -26,6 +25,7 @@
 #include "imagenets/testing/rostest_util.h"
 #include "imagenets_calibration/calibration.h"
 #include "imagenets_calibration/storage.h"
+#include "files_and_processes.h"
 
 namespace {
 
@@ -40,17 +40,6 @@ std::string param(const std::string& name) {
 }
 
 bool exists(const std::string& path) { return std::ifstream(path).good(); }
-
-// Runs `command` in a shell; its exit status and what it printed (stdout and stderr).
-int run(const std::string& command, std::string* output) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return -1;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output->append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 // One group to `q` through its controller, as the calibration's own motion does.
 void move(const std::string& action, const std::vector<std::string>& joints, const std::vector<double>& q) {

@@ -3,14 +3,9 @@
 // publishes is collected in a tf2 buffer. For the rostests of the calibrated URDF.
 #pragma once
 
-#include <fstream>
-#include <sstream>
+#include <memory>
 #include <string>
 #include <vector>
-
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -21,35 +16,7 @@
 #include "imagenets/vision/frames.h"
 #include "robot_description/robot_model.h"
 #include "imagenets/testing/rostest_util.h"
-
-inline std::string readFile(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-// A child process, stopped with SIGINT when it goes.
-class ChildProcess {
- public:
-  explicit ChildProcess(std::vector<std::string> args) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawnp(&pid_, argv[0], nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
-  }
-  ~ChildProcess() {
-    if (pid_ <= 0) return;
-    kill(pid_, SIGINT);
-    waitpid(pid_, nullptr, 0);
-  }
-  ChildProcess(const ChildProcess&) = delete;
-  ChildProcess& operator=(const ChildProcess&) = delete;
-  bool started() const { return pid_ > 0; }
-
- private:
-  pid_t pid_ = -1;
-};
+#include "files_and_processes.h"
 
 class UrdfStatePublisher {
  public:
