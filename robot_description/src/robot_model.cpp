@@ -14,6 +14,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "robot_description/urdf_kinematics.h"
+#include "robot_description/urdf_writer.h"
 #include "robot_description/yaml_fields.h"
 
 namespace robot_description {
@@ -99,6 +100,26 @@ void readInterfaces(const YAML::Node& root, const std::string& w, RobotDescripti
   }
 }
 
+// The file that `node`'s key `key` names, relative to the folder of the YAML file `yaml`; "" without
+// the key.
+std::string fileNamedBy(const YAML::Node& node, const char* key, const std::string& yaml) {
+  if (!node[key]) return "";
+  return (boost::filesystem::path(yaml).parent_path() / node[key].as<std::string>()).lexically_normal().string();
+}
+
+// The YAML file `d` was read from, when it is still there and a map; a null node otherwise (a
+// description made in code, or a file loadRobotDescription would have refused).
+YAML::Node descriptionYaml(const RobotDescription& d) {
+  if (d.source.empty() || !boost::filesystem::exists(d.source)) return YAML::Node();
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(d.source);
+  } catch (const YAML::Exception&) {
+    return YAML::Node();
+  }
+  return root.IsMap() ? root : YAML::Node();
+}
+
 std::string& urdfFileForAll() {
   static std::string path;
   return path;
@@ -129,7 +150,7 @@ std::string urdfFromParameter(const std::string& where, std::string& source) {
 
 std::string urdfText(const YAML::Node& root, const std::string& path, std::string& source) {
   if (root["urdf"] && root["urdf"].as<std::string>() != "robot_description") {
-    source = (boost::filesystem::path(path).parent_path() / root["urdf"].as<std::string>()).lexically_normal().string();
+    source = fileNamedBy(root, "urdf", path);
   } else if (!urdfFileForAll().empty()) {
     source = urdfFileForAll();
   } else {
@@ -170,14 +191,23 @@ void checkUrdfFormKeys(const YAML::Node& root, const std::string& w) {
   if (head["mono_camera"]) onlyKnownKeys(head["mono_camera"], {"link", "camera_info", "namespace"}, w + ": head.mono_camera");
 }
 
+// What both forms read alike once the chains are known: the head's poses, the interfaces, the
+// free parameters and the camera to calibrate.
+void readHeadPosesAndSettings(const YAML::Node& root, const std::string& w, RobotDescription& d) {
+  const YAML::Node head = need(root, "head", w);
+  d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
+  d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
+  readInterfaces(root, w, d);
+  readFreeParams(root, d);
+  if (head["calibration_camera"]) {
+    d = withCalibrationCamera(d, head["calibration_camera"].as<std::string>(), w + ": head.calibration_camera");
+  }
+}
+
 // A description whose kinematics are a URDF's (urdf_kinematics.h): the URDF (loadRobotDescription)
 // and the links to read; the rest as in a DH description.
 RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
   const std::string w = path;
-  const auto dir = boost::filesystem::path(path).parent_path();
-  auto file = [&](const YAML::Node& node, const char* key) {
-    return node[key] ? (dir / node[key].as<std::string>()).lexically_normal().string() : std::string();
-  };
   RobotDescription d;
   d.source = path;
   try {
@@ -217,18 +247,12 @@ RobotDescription fromUrdf(const YAML::Node& root, const std::string& path) {
     const std::string ws = w + ": head.stereo_camera";
     d.image_width = static_cast<int>(numberOr(stereo, "width", 1024, ws));
     d.image_height = static_cast<int>(numberOr(stereo, "height", 768, ws));
-    d.left_camera_info = file(stereo, "left_camera_info");
-    d.right_camera_info = file(stereo, "right_camera_info");
-    if (mono) d.mono_camera_info = file(mono, "camera_info");
+    d.left_camera_info = fileNamedBy(stereo, "left_camera_info", path);
+    d.right_camera_info = fileNamedBy(stereo, "right_camera_info", path);
+    if (mono) d.mono_camera_info = fileNamedBy(mono, "camera_info", path);
     d.arm_calibration_pose = poseDeg(arm, "calibration_pose_deg", w + ": arm", d.arm);
     d.arm_home = poseDeg(arm, "home_deg", w + ": arm", d.arm);
-    d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
-    d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
-    readInterfaces(root, w, d);
-    readFreeParams(root, d);
-    if (head["calibration_camera"]) {
-      d = withCalibrationCamera(d, head["calibration_camera"].as<std::string>(), w + ": head.calibration_camera");
-    }
+    readHeadPosesAndSettings(root, w, d);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());
   }
@@ -386,20 +410,9 @@ RobotDescription loadRobotDescription(const std::string& path) {
     d.stereo_baseline = number(stereo, "baseline", ws);
     d.image_width = static_cast<int>(numberOr(stereo, "width", 1024, ws));
     d.image_height = static_cast<int>(numberOr(stereo, "height", 768, ws));
-    const auto dir = boost::filesystem::path(path).parent_path();
-    auto rel = [&](const char* key) {
-      if (!stereo[key]) return std::string();
-      return (dir / stereo[key].as<std::string>()).lexically_normal().string();
-    };
-    d.left_camera_info = rel("left_camera_info");
-    d.right_camera_info = rel("right_camera_info");
-    d.head_calibration_pose = poseDeg(head, "calibration_pose_deg", w + ": head", d.head);
-    d.head_home = poseDeg(head, "home_deg", w + ": head", d.head);
-    readInterfaces(root, w, d);
-    readFreeParams(root, d);
-    if (head["calibration_camera"]) {
-      d = withCalibrationCamera(d, head["calibration_camera"].as<std::string>(), w + ": head.calibration_camera");
-    }
+    d.left_camera_info = fileNamedBy(stereo, "left_camera_info", path);
+    d.right_camera_info = fileNamedBy(stereo, "right_camera_info", path);
+    readHeadPosesAndSettings(root, w, d);
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(w + ": " + e.what());
   }
@@ -454,15 +467,14 @@ FreeParams freeParams(const RobotDescription& d) {
 void useUrdfFile(const std::string& path) { urdfFileForAll() = path; }
 
 std::string ownUrdf(const RobotDescription& d, std::string& source) {
-  if (d.source.empty() || !boost::filesystem::exists(d.source)) return "";
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(d.source);
-  } catch (const YAML::Exception&) {
-    return "";  // not a description file of this library (loadRobotDescription would have refused it)
-  }
-  if (!root.IsMap() || !urdfForm(root)) return "";
+  const YAML::Node root = descriptionYaml(d);
+  if (!root || !urdfForm(root)) return "";
   return urdfText(root, d.source, source);
+}
+
+std::string urdfFileOf(const RobotDescription& d) {
+  const YAML::Node root = descriptionYaml(d);
+  return root ? fileNamedBy(root, "urdf", d.source) : "";
 }
 
 std::string exampleRobotDescriptionPath() {

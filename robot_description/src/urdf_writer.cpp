@@ -5,9 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <boost/filesystem.hpp>
 #include <tinyxml2.h>
-#include <yaml-cpp/yaml.h>
 
 #include "robot_description/urdf_generator.h"
 #include "robot_description/urdf_kinematics.h"
@@ -128,18 +126,6 @@ XMLElement* mountJoint(UrdfDocument& urdf, const KinematicChain& chain) {
 }
 
 }  // namespace
-
-std::string urdfFileOf(const RobotDescription& d) {
-  if (d.source.empty() || !boost::filesystem::exists(d.source)) return "";
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(d.source);
-  } catch (const YAML::Exception&) {
-    return "";  // not a description file of this library (loadRobotDescription would have refused it)
-  }
-  if (!root.IsMap() || !root["urdf"]) return "";
-  return (boost::filesystem::path(d.source).parent_path() / root["urdf"].as<std::string>()).lexically_normal().string();
-}
 
 UrdfJoint urdfChainMountJoint(const RobotDescription& d, const KinematicChain& chain) {
   std::string file;
