@@ -32,12 +32,7 @@ void ThreadPool::helpUntil(const std::function<bool()>& done) {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!done()) {
     if (!tasks_.empty()) {
-      auto task = std::move(tasks_.front());
-      tasks_.pop_front();
-      lock.unlock();
-      task();
-      lock.lock();
-      cv_.notify_all();  // the task may have finished what another waiter waits for
+      runOldest(lock);
       continue;
     }
     cv_.wait(lock);
@@ -49,13 +44,17 @@ void ThreadPool::work() {
   for (;;) {
     cv_.wait(lock, [this] { return stopping_ || !tasks_.empty(); });
     if (tasks_.empty()) return;  // stopping, nothing left
-    auto task = std::move(tasks_.front());
-    tasks_.pop_front();
-    lock.unlock();
-    task();
-    lock.lock();
-    cv_.notify_all();  // a helper may be waiting for what this task finished
+    runOldest(lock);
   }
+}
+
+void ThreadPool::runOldest(std::unique_lock<std::mutex>& lock) {
+  auto task = std::move(tasks_.front());
+  tasks_.pop_front();
+  lock.unlock();
+  task();
+  lock.lock();
+  cv_.notify_all();
 }
 
 }  // namespace imagenets

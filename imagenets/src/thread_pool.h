@@ -26,6 +26,9 @@ class ThreadPool {
 
  private:
   void work();
+  // Runs the oldest queued task with the pool unlocked, then wakes every waiter: the task may have
+  // finished what a helper waits for. `lock` holds mutex_; a task is queued.
+  void runOldest(std::unique_lock<std::mutex>& lock);
 
   std::mutex mutex_;
   std::condition_variable cv_;
