@@ -1,7 +1,7 @@
-// What the rostests of this folder share around files and processes: a file's bytes, a shell
-// command's exit status and output, and a program (a node, robot_state_publisher) started as a
-// child process, its output in a log file if asked (a message on /rosout sent while a node starts
-// could be lost before the test's connection is up; what the node prints is not).
+// What the rostests of this folder share around files and processes: a file's bytes, and a program
+// (a node, robot_state_publisher) started as a child process, its output in a log file if asked (a
+// message on /rosout sent while a node starts could be lost before the test's connection is up;
+// what the node prints is not). A command run to its end: imagenets/testing/command_runner.h.
 #pragma once
 
 #include <fcntl.h>
@@ -10,8 +10,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -27,17 +25,6 @@ inline std::string readFile(const std::string& path) {
   std::ostringstream s;
   s << f.rdbuf();
   return s.str();
-}
-
-// Runs `command` in a shell; its exit status and what it printed (stdout and stderr).
-inline int run(const std::string& command, std::string* output) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return -1;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output->append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // A child process, stopped with SIGINT when it goes (SIGKILL if it has not ended 30 s later).

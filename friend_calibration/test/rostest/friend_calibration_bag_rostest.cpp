@@ -9,6 +9,7 @@
 
 #include "imagenets_calibration/storage.h"
 #include "imagenets_calibration_msgs/Calibrate.h"
+#include "imagenets/testing/command_runner.h"
 #include "imagenets/testing/rostest_util.h"
 #include "files_and_processes.h"
 
@@ -35,10 +36,11 @@ TEST(FriendCalibrationBag, OfflineFromTheRecordedBagEqualsTheLiveRun) {
 
   // Offline, with a master that does not exist: the bag is all it needs.
   const std::string offline_file = dir + "/offline.yaml";
-  std::string out;
-  const int status = run("ROS_MASTER_URI=http://127.0.0.1:9 " IMAGENETS_TOOL " calibrate --bag " + bag + " --config " +
-                             description + " --output " + offline_file,
-                         &out);
+  const imagenets::testing::CommandResult result = imagenets::testing::runCommand(
+      "ROS_MASTER_URI=http://127.0.0.1:9 " IMAGENETS_TOOL,
+      "calibrate --bag " + bag + " --config " + description + " --output " + offline_file);
+  const int status = result.status;
+  const std::string& out = result.output;
   std::printf("imagenets calibrate --bag %s:\n%s", bag.c_str(), out.c_str());
   ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("bag: 10 samples"), std::string::npos) << out;

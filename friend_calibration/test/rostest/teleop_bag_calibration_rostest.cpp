@@ -22,10 +22,10 @@
 
 #include "friend_hw_sim/true_robot.h"
 #include "imagenets/blocks/block_harness.h"
+#include "imagenets/testing/command_runner.h"
 #include "imagenets/testing/rostest_util.h"
 #include "imagenets_calibration/calibration.h"
 #include "imagenets_calibration/storage.h"
-#include "files_and_processes.h"
 
 namespace {
 
@@ -111,10 +111,11 @@ TEST(TeleopBagCalibration, PlainRosbagRecordOfAMovedRobotCalibratesOffline) {
 
   // Offline, with a master that does not exist: the bag, the config and the URDF file.
   const std::string output = dir + "/head_fixed_point.yaml";
-  std::string out;
-  const int status = run("ROS_MASTER_URI=http://127.0.0.1:9 " IMAGENETS_TOOL " calibrate --bag " + bag + " --config " +
-                             config + " --urdf " + urdf + " --output " + output,
-                         &out);
+  const imagenets::testing::CommandResult result = imagenets::testing::runCommand(
+      "ROS_MASTER_URI=http://127.0.0.1:9 " IMAGENETS_TOOL,
+      "calibrate --bag " + bag + " --config " + config + " --urdf " + urdf + " --output " + output);
+  const int status = result.status;
+  const std::string& out = result.output;
   std::printf("%d poses moved in %.1f s; imagenets calibrate --bag %s --config %s --urdf %s:\n%s", kPoses + 1, moving,
               bag.c_str(), config.c_str(), urdf.c_str(), out.c_str());
   ASSERT_EQ(status, 0) << out;
