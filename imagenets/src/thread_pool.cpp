@@ -54,7 +54,7 @@ void ThreadPool::runOldest(std::unique_lock<std::mutex>& lock) {
   lock.unlock();
   task();
   lock.lock();
-  cv_.notify_all();
+  cv_.notify_all();  // the task may have finished what a waiter (helpUntil) waits for
 }
 
 }  // namespace imagenets
