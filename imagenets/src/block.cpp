@@ -5,18 +5,19 @@
 namespace imagenets {
 
 Context::Context(const std::string& block_name, const std::vector<PortSpec>& inputs,
-                 const std::vector<PortSpec>& outputs, std::vector<Value> input_values,
+                 const std::vector<PortSpec>& outputs, const std::vector<Value>& input_values,
                  std::shared_ptr<const PropertyValues> properties)
     : block_name_(block_name),
       inputs_(inputs),
       outputs_(outputs),
-      input_values_(std::move(input_values)),
+      input_values_(input_values),
       output_values_(outputs.size()),
       properties_(std::move(properties)) {}
 
 const Value& Context::inputValue(const std::string& port) const {
+  static const Value none;
   for (size_t i = 0; i < inputs_.size(); ++i) {
-    if (inputs_[i].name == port) return input_values_[i];
+    if (inputs_[i].name == port) return i < input_values_.size() ? input_values_[i] : none;
   }
   throw std::logic_error("block '" + block_name_ + "' has no input port '" + port + "'");
 }
@@ -24,7 +25,7 @@ const Value& Context::inputValue(const std::string& port) const {
 void Context::setOutput(const std::string& port, const Value& value) {
   for (size_t i = 0; i < outputs_.size(); ++i) {
     if (outputs_[i].name != port) continue;
-    if (value && value.type->name != outputs_[i].type->name) {
+    if (value && value.type != outputs_[i].type && value.type->name != outputs_[i].type->name) {
       throw std::logic_error("block '" + block_name_ + "': output '" + port + "' is " +
                              outputs_[i].type->name + ", not " + value.type->name);
     }

@@ -14,10 +14,9 @@ int missingInput(const Block& block, const std::vector<Value>& inputs) {
   return -1;
 }
 
-BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<Value> inputs,
+BlockInvocation invokeBlock(Block& block, const std::string& name, const std::vector<Value>& inputs,
                             std::shared_ptr<const PropertyValues> properties, InvocationOptions options) {
   BlockInvocation result;
-  inputs.resize(block.inputs().size());
   result.missing_input = missingInput(block, inputs);
   if (result.missing_input >= 0) {
     result.status = BlockStatus::NotRun;
@@ -26,7 +25,7 @@ BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<V
     return result;
   }
   static const auto no_properties = std::make_shared<const PropertyValues>();
-  Context ctx(name, block.inputs(), block.outputs(), std::move(inputs), properties ? std::move(properties) : no_properties);
+  Context ctx(name, block.inputs(), block.outputs(), inputs, properties ? std::move(properties) : no_properties);
   ctx.setRunChannel(std::move(options.channel));
   if (options.starting) options.starting();
   const auto start = std::chrono::steady_clock::now();

@@ -43,9 +43,10 @@ std::string portList(const std::vector<PortSpec>& ports);
 // parallel), so a block keeps per-run data here, not in members.
 class Context {
  public:
-  // `block_name` and the port lists must outlive the context (they are the block's own).
+  // `block_name`, the port lists and the input values must outlive the context (the block's own,
+  // and its host's). `input_values` per input port; a shorter list leaves the last ones empty.
   Context(const std::string& block_name, const std::vector<PortSpec>& inputs,
-          const std::vector<PortSpec>& outputs, std::vector<Value> input_values,
+          const std::vector<PortSpec>& outputs, const std::vector<Value>& input_values,
           std::shared_ptr<const PropertyValues> properties);
 
   const std::string& blockName() const { return block_name_; }
@@ -93,7 +94,7 @@ class Context {
   const std::string& block_name_;
   const std::vector<PortSpec>& inputs_;
   const std::vector<PortSpec>& outputs_;
-  std::vector<Value> input_values_;
+  const std::vector<Value>& input_values_;
   std::vector<Value> output_values_;
   std::shared_ptr<const PropertyValues> properties_;
   RunChannel channel_;

@@ -41,8 +41,9 @@ struct InvocationOptions {
 // Checks the required inputs (per declared input port), builds the Context, calls
 // `options.starting` and then process(), timed, catching every error; the outputs are checked
 // against the declared ports as the block sets them (name, type). Never throws for what the block
-// does. `properties` null: the block has none.
-BlockInvocation invokeBlock(Block& block, const std::string& name, std::vector<Value> inputs,
+// does. `inputs`: per declared input port (a shorter list leaves the last ones empty), read in
+// place. `properties` null: the block has none.
+BlockInvocation invokeBlock(Block& block, const std::string& name, const std::vector<Value>& inputs,
                             std::shared_ptr<const PropertyValues> properties, InvocationOptions options = {});
 
 }  // namespace imagenets

@@ -100,10 +100,10 @@ const PortType& PortType::of() {
 template <class M>
 boost::shared_ptr<const M> Value::as() const {
   if (!data) return nullptr;
-  const std::string wanted = ros::message_traits::DataType<M>::value();
+  const char* wanted = ros::message_traits::DataType<M>::value();  // no string built per read
   if (!type || type->name != wanted) {
-    throw std::logic_error("value of type '" + (type ? type->name : std::string("?")) +
-                           "' read as '" + wanted + "'");
+    throw std::logic_error("value of type '" + (type ? type->name : std::string("?")) + "' read as '" +
+                           wanted + "'");
   }
   return boost::static_pointer_cast<const M>(data);
 }

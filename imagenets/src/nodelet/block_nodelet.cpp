@@ -1,6 +1,7 @@
 // The generic nodelet host (see block_nodelet.h for what it offers a launch file).
 #include "imagenets/block_nodelet.h"
 
+#include <atomic>
 #include <chrono>
 #include <functional>
 #include <mutex>
@@ -84,6 +85,7 @@ class BlockHost {
       throw std::runtime_error(text);
     }
     allSpecs();  // the block's ports and properties are final now
+    properties_ = block_->propertySnapshot();
 
     // A source: no required input and no input linked (remapped). It runs once, on a timer or on
     // ~run; any other block runs when its inputs arrive.
@@ -105,10 +107,16 @@ class BlockHost {
     }
 
     // ~status is built only while someone listens (a message per run costs a chain of cheap
-    // blocks ~10 % of its latency); whoever connects gets the current one at once.
+    // blocks ~10 % of its latency); whoever connects gets the current one at once. The listeners
+    // are counted here: Publisher::getNumSubscribers takes roscpp's topic lock, which the next
+    // block of a chain needs at that moment for its own publish.
     status_pub_ = pnh_.advertise<imagenets::BlockNodeletStatus>(
-        "status", 1, [this](const ros::SingleSubscriberPublisher&) { publishStatus(); },
-        ros::SubscriberStatusCallback(), ros::VoidConstPtr(), true);
+        "status", 1,
+        [this](const ros::SingleSubscriberPublisher&) {
+          ++status_listeners_;
+          publishStatus();
+        },
+        [this](const ros::SingleSubscriberPublisher&) { --status_listeners_; }, ros::VoidConstPtr(), true);
     descriptions_pub_ = pnh_.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
     updates_pub_ = pnh_.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
     descriptions_pub_.publish(describeProperties(specs_));
@@ -204,8 +212,8 @@ class BlockHost {
     // What runs inside the block (a sub-net) reports on ~status while it runs. The thread's CPU
     // clock (two system calls) is read only while ~status is watched, the one place it shows.
     InvocationOptions options{RunChannel{[this](const RunEvent& e) { onInnerEvent(e); }, {}}, {}};
-    options.cpu_time = status_pub_.getNumSubscribers() > 0;
-    BlockInvocation run = invokeBlock(*block_, name_, cached_inputs_, block_->propertySnapshot(), std::move(options));
+    options.cpu_time = status_listeners_ > 0;
+    BlockInvocation run = invokeBlock(*block_, name_, cached_inputs_, properties_, std::move(options));
     {
       std::lock_guard<std::mutex> lock(status_mutex_);
       running_ = false;
@@ -343,6 +351,7 @@ class BlockHost {
       return false;
     }
     block_ = std::move(fresh);
+    properties_ = block_->propertySnapshot();
     inner_ = dynamic_cast<const InnerNet*>(block_.get());
     internal_.clear();  // inner ports are advertised again for the new inner net
     specs_.clear();
@@ -353,11 +362,12 @@ class BlockHost {
   void publishUpdates() { updates_pub_.publish(encodeProperties(specs_, currentValues())); }
 
   void publishStatus() {
+    if (status_listeners_ == 0) return;
     std::lock_guard<std::mutex> lock(status_mutex_);
     publishStatusLocked();
   }
   void publishStatusLocked() {
-    if (status_pub_.getNumSubscribers() == 0) return;
+    if (status_listeners_ == 0) return;
     auto s = boost::make_shared<imagenets::BlockNodeletStatus>();
     s->header.stamp = ros::Time::now();
     s->block = name_;
@@ -383,6 +393,9 @@ class BlockHost {
 
   std::function<std::unique_ptr<Block>()> factory_;
   std::unique_ptr<Block> block_;
+  // The block's property values, taken when they change (only set_parameters changes them): a
+  // run passes them on without the block's lock.
+  std::shared_ptr<const PropertyValues> properties_;
   const InnerNet* inner_ = nullptr;  // set for a block running a net inside
   std::vector<InternalPort> internal_;
   std::string name_, type_;
@@ -399,6 +412,7 @@ class BlockHost {
   std::vector<ros::Publisher> publishers_;
   std::vector<ros::Subscriber> subscribers_;
   ros::Publisher status_pub_, descriptions_pub_, updates_pub_;
+  std::atomic<int> status_listeners_{0};
   ros::ServiceServer run_srv_, set_srv_;
   ros::Timer timer_;
 

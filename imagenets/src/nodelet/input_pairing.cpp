@@ -44,12 +44,17 @@ Value InputPairing::partner(size_t input, const ros::Time& stamp) const {
 
 std::optional<std::vector<Value>> InputPairing::add(size_t input, const Value& value) {
   auto& h = history_.at(input);
-  h.push_back(value);
   // A single input pairs with nothing: holding older messages would only keep their buffers
   // (images) alive, so the allocator cannot hand them out again.
   const size_t keep = history_.size() == 1 ? 1 : std::max<size_t>(1, options_.history);
-  while (h.size() > keep) h.pop_front();
+  if (keep == 1 && !h.empty()) {
+    h.back() = value;  // in place: no deque block handed out and back per message
+  } else {
+    h.push_back(value);
+    while (h.size() > keep) h.pop_front();
+  }
   if (isSource()) return std::nullopt;
+  if (history_.size() == 1) return std::vector<Value>{value};
 
   // The time this set is about: the arrival's stamp, or (for a time-less arrival) the newest
   // stamp held by a required input (by any input when none is required).
