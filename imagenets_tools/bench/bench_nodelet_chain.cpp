@@ -1,21 +1,23 @@
 // bench_nodelet_chain: a 1024x768 image through a chain of 5 block nodelets, all in one nodelet
-// manager (messages pass by pointer), versus the same chain as 5 plain hand-written nodelets in
-// one manager (no BlockNodelet host: subscribe, publish the same pointer), versus the block chain
-// as 5 separate processes (TCPROS). Prints median and p99 latency, end to end and per hop, and
-// throughput, side by side with their ratios: the host's cost per hop is block / plain. The block
-// and plain chains are loaded together and measured in alternation over several rounds (wall-clock
-// throughput swings with the machine's load; the median of the rounds' ratios, their spread and
-// the CPU time per image say how far to trust it). As root,
+// manager (messages pass by pointer), versus the same chain as 5 plain hand-written nodelets doing
+// the same work in one manager (no BlockNodelet host: read the image through cv_bridge, publish the
+// same pointer), versus the block chain as 5 separate processes (TCPROS). Prints median and p99
+// latency, end to end and per hop, and throughput, side by side with their ratios: the host's cost
+// per hop is block / plain. The block and plain chains are loaded together and measured in turns,
+// so that the machine's load hits both alike: latency image by image (block, plain, plain, block,
+// ...), throughput in rounds (the median of the rounds' ratios, their spread and the CPU time per
+// image say how far to trust it). As root,
 // also the block chain as 5 processes on two hosts (network namespaces made by scripts/two-hosts:
 // blocks 1, 3, 5 on the "robot", the driver and blocks 2, 4 on the "workstation"), so every hop
 // crosses the veth between them: the price of splitting a net over machines (docs/launch.md).
 // Starts its own ROS master on a private port; needs no sourced environment.
 //
-// The blocks are imagenets/Grayscale fed a mono8 image, which they pass on unchanged (by pointer),
-// so the figures are the cost of the links themselves, not of image processing.
+// The blocks are imagenets/Grayscale fed a mono8 image, which they check and pass on unchanged (by
+// pointer), so the figures are the cost of the links themselves, not of image processing.
 #include <errno.h>
 #include <time.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -33,7 +35,9 @@
 
 #include <nodelet/loader.h>
 #include <nodelet/nodelet.h>
+#include <cv_bridge/cv_bridge.h>
 #include <ros/ros.h>
+#include <sensor_msgs/image_encodings.h>
 #include <sensor_msgs/Image.h>
 
 #include "imagenets/bench_summary.h"
@@ -44,10 +48,15 @@ using imagenets::printSummaryRow;
 
 constexpr int kBlocks = 5;
 constexpr int kHops = kBlocks + 1;  // driver -> block 1 -> ... -> block 5 -> driver
-constexpr int kLatencySamples = 300;
-constexpr int kThroughputMessages = 2000;
+// In one manager, per chain: latency samples, one image in flight, block and plain taking turns
+// image by image; throughput in kRounds rounds, the two chains taking turns round by round.
+constexpr int kLatencySamples = 10000;
+constexpr int kThroughputMessages = 20000;
+constexpr int kRounds = 20;
 constexpr int kWindow = 2;  // messages in flight during the throughput run
-constexpr int kRounds = 10;  // block and plain chains measured in alternation
+// One process per block (TCPROS, ~15x slower per image): fewer.
+constexpr int kProcessLatencySamples = 300;
+constexpr int kProcessThroughputMessages = 2000;
 constexpr const char* kRobotIp = "10.77.0.1";  // scripts/two-hosts
 constexpr const char* kWorkstationIp = "10.77.0.2";
 
@@ -87,6 +96,7 @@ struct Figures {
   std::vector<double> latency_us;  // end to end, one message in flight
   std::vector<double> throughput;  // messages per second with kWindow in flight, one per round
   std::vector<double> cpu_us;      // this process's CPU time per image in those runs, one per round
+  std::vector<double> faults;      // this process's page faults per image in those runs, one per round
   int lost = 0;
   bool same_pointer = false;       // the image came back as the object sent
 };
@@ -101,6 +111,12 @@ double percentile(std::vector<double> v, double p) {
 // All threads of this process (driver, spinner, both managers' workers): while one chain runs the
 // other waits idle, so what one run adds is that chain's cost. Far steadier than wall time on a
 // machine that is not idle.
+long processPageFaults() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_minflt + u.ru_majflt;
+}
+
 double processCpuSeconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
@@ -145,6 +161,7 @@ class Driver {
   void throughput(int messages, Figures* f) {
     const auto start = Clock::now();
     const double cpu_start = processCpuSeconds();
+    const long faults_start = processPageFaults();
     int sent = 0, done_before;
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -167,15 +184,14 @@ class Driver {
     const int done = received_ - done_before;
     f->throughput.push_back(done / seconds);
     f->cpu_us.push_back(done > 0 ? (processCpuSeconds() - cpu_start) * 1e6 / done : 0.0);
+    f->faults.push_back(done > 0 ? static_cast<double>(processPageFaults() - faults_start) / done : 0.0);
   }
 
-  Figures run(int rounds = 1) {
+  Figures run(int latency_samples, int throughput_messages) {
     Figures f;
     warmUp();
-    for (int r = 0; r < rounds; ++r) {
-      latency(kLatencySamples / rounds, &f);
-      throughput(kThroughputMessages / rounds, &f);
-    }
+    latency(latency_samples, &f);
+    throughput(throughput_messages, &f);
     return f;
   }
 
@@ -227,16 +243,30 @@ class Driver {
 
 std::string blockName(const std::string& prefix, int i) { return "/" + prefix + std::to_string(i); }
 
-// What a careful hand-written nodelet does for the same stage: take the image, pass the same
-// pointer on. No ports, properties, pairing, stats or status.
-class PlainPass : public nodelet::Nodelet {
+// What a careful hand-written nodelet does for the same stage as imagenets/Grayscale (the way
+// image_pipeline's nodelets read images): the image through cv_bridge, a mono8 image passed on as
+// the same pointer, any other converted. No ports, properties, pairing, stats or status.
+class PlainGrayscale : public nodelet::Nodelet {
  private:
   void onInit() override {
     ros::NodeHandle& pnh = getPrivateNodeHandle();
     pub_ = pnh.advertise<sensor_msgs::Image>("out/image", 5);
-    sub_ = pnh.subscribe("in/image", 5, &PlainPass::onImage, this);
+    sub_ = pnh.subscribe("in/image", 5, &PlainGrayscale::onImage, this);
   }
-  void onImage(const sensor_msgs::ImageConstPtr& image) { pub_.publish(image); }
+  void onImage(const sensor_msgs::ImageConstPtr& image) {
+    cv_bridge::CvImageConstPtr in;
+    try {
+      in = cv_bridge::toCvShare(image);
+    } catch (const cv_bridge::Exception& e) {
+      NODELET_ERROR_STREAM(e.what());
+      return;
+    }
+    if (image->encoding == sensor_msgs::image_encodings::MONO8) {
+      pub_.publish(image);
+      return;
+    }
+    pub_.publish(cv_bridge::cvtColor(in, sensor_msgs::image_encodings::MONO8)->toImageMsg());
+  }
   ros::Publisher pub_;
   ros::Subscriber sub_;
 };
@@ -256,24 +286,27 @@ std::unique_ptr<Driver> chainInOneManager(nodelet::Loader& manager, const std::s
   return std::make_unique<Driver>(in, blockName(prefix, kBlocks) + "/out/image");
 }
 
-// The block chain and the plain chain, both loaded at once and measured in alternation: kRounds
-// rounds, each timing both (which goes first alternates), so a change in the machine's load during
-// the run hits both alike. Each round's throughput ratio is one sample; the median and the spread
-// of those samples are what the benchmark reports.
+// The block chain and the plain chain, both loaded at once and measured in turns, so a change in
+// the machine's load during the run hits both alike: kRounds rounds (which goes first alternates),
+// each timing latency image by image in turns, then the throughput of one chain and the other.
+// Each round's throughput ratio is one sample; the median and the spread of those samples are what
+// the benchmark reports.
 void blockAndPlainInOneManager(Figures* block, Figures* plain) {
   nodelet::Loader block_manager(false);
   // The plain nodelets are created directly (no plug-in lookup).
   const boost::function<boost::shared_ptr<nodelet::Nodelet>(const std::string&)> create =
-      [](const std::string&) { return boost::shared_ptr<nodelet::Nodelet>(new PlainPass); };
+      [](const std::string&) { return boost::shared_ptr<nodelet::Nodelet>(new PlainGrayscale); };
   nodelet::Loader plain_manager(create);
   std::unique_ptr<Driver> block_driver = chainInOneManager(block_manager, "imagenets/Grayscale", "m");
-  std::unique_ptr<Driver> plain_driver = chainInOneManager(plain_manager, "bench/PlainPass", "h");
+  std::unique_ptr<Driver> plain_driver = chainInOneManager(plain_manager, "bench/PlainGrayscale", "h");
   block_driver->warmUp();
   plain_driver->warmUp();
   for (int r = 0; r < kRounds; ++r) {
     std::pair<Driver*, Figures*> turns[2] = {{block_driver.get(), block}, {plain_driver.get(), plain}};
     if (r % 2 == 1) std::swap(turns[0], turns[1]);
-    for (auto& turn : turns) turn.first->latency(kLatencySamples / kRounds, turn.second);
+    for (int i = 0; i < kLatencySamples / kRounds; ++i) {
+      for (auto& turn : turns) turn.first->latency(1, turn.second);
+    }
     for (auto& turn : turns) turn.first->throughput(kThroughputMessages / kRounds, turn.second);
   }
 }
@@ -297,7 +330,7 @@ Figures inSeparateProcesses(const std::string& prefix, const std::string& robot_
   Figures f;
   {
     Driver driver("/bench/" + prefix + "_in", blockName(prefix, kBlocks) + "/out/image");
-    f = driver.run();
+    f = driver.run(kProcessLatencySamples, kProcessThroughputMessages);
   }
   for (pid_t pid : pids) stop(pid);
   return f;
@@ -335,6 +368,12 @@ void ensureEnvironment(char** argv) {
   setenv("IMAGENETS_BENCH_ENV", "1", 1);
   const std::string path = std::string("/usr/bin:") + (std::getenv("PATH") ? std::getenv("PATH") : "");
   setenv("PATH", path.c_str(), 1);  // Debian's python for the master
+  // A steady stream's images come and go at one size. glibc's default hands the freed heap top back
+  // to the kernel now and then and faults it in again for the next image: tens of thousands of
+  // page faults a run, more of them in the block chain (its blocks keep their last input, for
+  // re-runs), +-20 % CPU per image from run to run. Both chains run with the heap kept, as a
+  // long-running manager's would be; GLIBC_TUNABLES= (empty) measures with glibc's default.
+  setenv("GLIBC_TUNABLES", "glibc.malloc.trim_threshold=268435456:glibc.malloc.mmap_threshold=33554432", 0);
   const std::string env_sh = std::string(IMAGENETS_DEVEL_PREFIX) + "/env.sh";
   execl(env_sh.c_str(), env_sh.c_str(), argv[0], static_cast<char*>(nullptr));
   std::perror(env_sh.c_str());
@@ -406,6 +445,8 @@ void printThroughput(const Figures& manager, const Figures& plain, const Figures
     round_ratios.push_back(ratio(manager.throughput[r], plain.throughput[r]));
   const double cpu_block = percentile(manager.cpu_us, 0.5), cpu_plain = percentile(plain.cpu_us, 0.5);
   std::printf("\n%-24s %14.1f %14.1f %7.2fx", "CPU per image (us)", cpu_block, cpu_plain, ratio(cpu_block, cpu_plain));
+  std::printf("\n%-24s %14.1f %14.1f", "page faults per image", percentile(manager.faults, 0.5),
+              percentile(plain.faults, 0.5));
   std::printf("\n%-24s %14s %14s %7.2fx   (%zu rounds: min %.2fx, max %.2fx; target >= 0.9x)",
               "throughput, per round", "", "", percentile(round_ratios, 0.5), round_ratios.size(),
               percentile(round_ratios, 0.0), percentile(round_ratios, 1.0));
@@ -450,7 +491,9 @@ int main(int argc, char** argv) {
   printThroughput(manager, plain, processes, two_hosts, hosts != nullptr);
   std::printf("\nratio = block nodelets / plain nodelets (latency: the host's cost per hop, target <= 1.1x;\n"
               "        throughput: target >= 0.9x); processes and 2 hosts ratios = them / block. Block and plain\n"
-              "        chains run in alternation (%d rounds), throughput = median of the rounds. 2 hosts: every hop crosses the veth between two network\n"
+              "        chains run in turns (latency image by image; throughput in %d rounds, the median of the\n"
+              "        rounds). Plain nodelets read the image through cv_bridge and pass it on, as the blocks do.\n"
+              "        2 hosts: every hop crosses the veth between two network\n"
               "        namespaces (robot 10.77.0.1: blocks 1, 3, 5; workstation 10.77.0.2: driver, blocks 2, 4).\n",
               kRounds);
 
