@@ -18,12 +18,12 @@ class Grayscale : public Block {
 
   void process(Context& ctx) override {
     std::string encoding;
-    std_msgs::Header header;
-    cv::Mat in = inputImage(ctx, "image", {"bgr8", "rgb8", "bgra8", "rgba8", "mono8"}, &encoding, &header);
+    cv::Mat in = inputImage(ctx, "image", {"bgr8", "rgb8", "bgra8", "rgba8", "mono8"}, &encoding);
     if (encoding == "mono8") {
       ctx.setOutput("image", ctx.inputValue("image"));
       return;
     }
+    const std_msgs::Header header = ctx.input<sensor_msgs::Image>("image")->header;
     static const std::map<std::string, int> codes{{"bgr8", cv::COLOR_BGR2GRAY},
                                                   {"rgb8", cv::COLOR_RGB2GRAY},
                                                   {"bgra8", cv::COLOR_BGRA2GRAY},
