@@ -52,36 +52,40 @@ class TargetDetectionNet : public Block, public InnerNet {
     target_ = load(target_file);
     inputs_.clear();
     outputs_.clear();
-    for (const auto& node : marker_->net().nodes()) {
-      const auto* port = dynamic_cast<const NetPort*>(node.block.get());
-      if (!port) continue;
-      const std::string name = port->outerName().empty() ? node.name : port->outerName();
-      if (port->direction() == NetPort::Direction::In) {
-        addInput(name, port->type(), "detection net input '" + node.name + "'").optional = port->optional();
-        inputs_.push_back({name, node.name + ".value", ""});
-      } else {
-        addOutput(name, port->type(), "detection net output '" + node.name + "'");
-        outputs_.push_back({name, node.name + ".value", ""});
-      }
+    const Net& marker_net = marker_->net();
+    for (const std::string& name : netPortNames(marker_net, NetPort::Direction::In)) {
+      const int node = findNetPort(marker_net, NetPort::Direction::In, name);
+      const NetPort& port = netPortAt(marker_net, node);
+      const std::string& block = marker_net.node(node).name;
+      addInput(name, port.type(), "detection net input '" + block + "'").optional = port.optional();
+      inputs_.push_back({name, block + ".value", ""});
+    }
+    for (const std::string& name : netPortNames(marker_net, NetPort::Direction::Out)) {
+      const int node = findNetPort(marker_net, NetPort::Direction::Out, name);
+      const std::string& block = marker_net.node(node).name;
+      addOutput(name, netPortAt(marker_net, node).type(), "detection net output '" + block + "'");
+      outputs_.push_back({name, block + ".value", ""});
     }
     // The target net: the same inputs, outputs among the marker net's.
-    for (const auto& node : target_->net().nodes()) {
-      const auto* port = dynamic_cast<const NetPort*>(node.block.get());
-      if (!port) continue;
-      const std::string name = port->outerName().empty() ? node.name : port->outerName();
-      auto& ports = port->direction() == NetPort::Direction::In ? inputs_ : outputs_;
-      auto it = std::find_if(ports.begin(), ports.end(), [&](const Port& p) { return p.port == name; });
-      const std::string kind = port->direction() == NetPort::Direction::In ? "input" : "output";
-      if (it == ports.end()) {
-        throw BlockError("property 'target_net': " + target_file + " has the " + kind + " '" + name + "', which " +
-                         marker_file + " has not");
+    const Net& target_net = target_->net();
+    for (const auto direction : {NetPort::Direction::In, NetPort::Direction::Out}) {
+      auto& ports = direction == NetPort::Direction::In ? inputs_ : outputs_;
+      const std::string kind = direction == NetPort::Direction::In ? "input" : "output";
+      for (const std::string& name : netPortNames(target_net, direction)) {
+        auto it = std::find_if(ports.begin(), ports.end(), [&](const Port& p) { return p.port == name; });
+        if (it == ports.end()) {
+          throw BlockError("property 'target_net': " + target_file + " has the " + kind + " '" + name + "', which " +
+                           marker_file + " has not");
+        }
+        const int node = findNetPort(target_net, direction, name);
+        const PortType& target_type = netPortAt(target_net, node).type();
+        const PortType* type = direction == NetPort::Direction::In ? findInput(name)->type : findOutput(name)->type;
+        if (type->name != target_type.name) {
+          throw BlockError("property 'target_net': " + kind + " '" + name + "' is " + target_type.name + " in " +
+                           target_file + " but " + type->name + " in " + marker_file);
+        }
+        it->target_inner = target_net.node(node).name + ".value";
       }
-      const PortType* type = port->direction() == NetPort::Direction::In ? findInput(name)->type : findOutput(name)->type;
-      if (type->name != port->type().name) {
-        throw BlockError("property 'target_net': " + kind + " '" + name + "' is " + port->type().name + " in " +
-                         target_file + " but " + type->name + " in " + marker_file);
-      }
-      it->target_inner = node.name + ".value";
     }
     for (const Port& in : inputs_) {
       if (in.target_inner.empty()) {

@@ -31,6 +31,8 @@ const PortType& netPortType(const std::string& name);
 // The node of `net` that is its port `name` (outer name) of `direction`, or -1: how a host finds
 // what a net declares (e.g. its output `result`) without knowing its blocks.
 int findNetPort(const Net& net, NetPort::Direction direction, const std::string& name);
+// The port block of the node `node` of `net`, an index findNetPort gave (its type, optional()).
+const NetPort& netPortAt(const Net& net, int node);
 // The outer names of the net's ports of `direction`, in the net's order (for messages).
 std::vector<std::string> netPortNames(const Net& net, NetPort::Direction direction);
 

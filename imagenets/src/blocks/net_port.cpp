@@ -34,6 +34,8 @@ int findNetPort(const Net& net, NetPort::Direction direction, const std::string&
   return -1;
 }
 
+const NetPort& netPortAt(const Net& net, int node) { return dynamic_cast<const NetPort&>(*net.node(node).block); }
+
 std::vector<std::string> netPortNames(const Net& net, NetPort::Direction direction) {
   std::vector<std::string> names;
   for (const auto& node : net.nodes()) {

@@ -76,11 +76,6 @@ NetSpec parseIncluded(const std::string& path, const std::vector<std::string>& c
   return included;
 }
 
-// The outer name of a port block of an inner net: its `port`, else its block name.
-std::string outerName(const Net::Node& node, const NetPort& boundary) {
-  return boundary.outerName().empty() ? node.name : boundary.outerName();
-}
-
 }  // namespace
 
 void SubNetBlock::configure() {
@@ -109,32 +104,38 @@ void SubNetBlock::configure() {
 }
 
 void SubNetBlock::declarePorts(const std::string& origin) {
+  const Net& net = executor_->net();
   const std::string repetition_port = property<std::string>("repetition_input");
   repetition_input_.clear();
-  for (const auto& node : executor_->net().nodes()) {
-    const auto* boundary = dynamic_cast<const NetPort*>(node.block.get());
-    if (!boundary) continue;
-    const std::string port = outerName(node, *boundary);
-    const PortType& type = boundary->type();
-    if (boundary->direction() == NetPort::Direction::In && port == repetition_port) {
-      if (type.name != PortType::of<std_msgs::Int32>().name) {
-        throw BlockError("property 'repetition_input': port '" + port + "' of " + origin + " is " + type.name +
-                         ", expected std_msgs/Int32");
-      }
-      repetition_input_ = node.name + ".value";
-    } else if (boundary->direction() == NetPort::Direction::In) {
-      addInput(port, type, "sub-net input '" + node.name + "'").optional = boundary->optional();
-      inputs_.push_back({port, node.name + ".value"});
-    } else {
-      addOutput(port, type, "sub-net output '" + node.name + "' (last repetition)");
-      const Collector* collector = Collectors::find(type);
-      outputs_.push_back({port, node.name + ".value", collector});
-      if (collector) addOutput(port + "_all", *collector->collection, "the results of all repetitions of '" + port + "'");
+  if (!repetition_port.empty()) {
+    const int node = findNetPort(net, NetPort::Direction::In, repetition_port);
+    if (node < 0) {
+      throw BlockError("property 'repetition_input': " + origin + " has no input port '" + repetition_port +
+                       "' (an imagenets/SubNetInput with port '" + repetition_port + "', type std_msgs/Int32)");
     }
+    const PortType& type = netPortAt(net, node).type();
+    if (type.name != PortType::of<std_msgs::Int32>().name) {
+      throw BlockError("property 'repetition_input': port '" + repetition_port + "' of " + origin + " is " + type.name +
+                       ", expected std_msgs/Int32");
+    }
+    repetition_input_ = net.node(node).name + ".value";
   }
-  if (!repetition_port.empty() && repetition_input_.empty()) {
-    throw BlockError("property 'repetition_input': " + origin + " has no input port '" + repetition_port +
-                     "' (an imagenets/SubNetInput with port '" + repetition_port + "', type std_msgs/Int32)");
+  for (const std::string& port : netPortNames(net, NetPort::Direction::In)) {
+    if (port == repetition_port) continue;  // fed the repetition's index, not an outer port
+    const int node = findNetPort(net, NetPort::Direction::In, port);
+    const NetPort& boundary = netPortAt(net, node);
+    const std::string& block = net.node(node).name;
+    addInput(port, boundary.type(), "sub-net input '" + block + "'").optional = boundary.optional();
+    inputs_.push_back({port, block + ".value"});
+  }
+  for (const std::string& port : netPortNames(net, NetPort::Direction::Out)) {
+    const int node = findNetPort(net, NetPort::Direction::Out, port);
+    const PortType& type = netPortAt(net, node).type();
+    const std::string& block = net.node(node).name;
+    addOutput(port, type, "sub-net output '" + block + "' (last repetition)");
+    const Collector* collector = Collectors::find(type);
+    outputs_.push_back({port, block + ".value", collector});
+    if (collector) addOutput(port + "_all", *collector->collection, "the results of all repetitions of '" + port + "'");
   }
 }
 
@@ -150,25 +151,22 @@ void SubNetBlock::configureUntil(const std::vector<std::string>& chain) {
     addOptionalInput<std_msgs::Int32>("max_repeat", "at most this many repetitions (instead of the property)");
   }
   until_done_.clear();
-  for (const auto& node : until_->net().nodes()) {
-    const auto* boundary = dynamic_cast<const NetPort*>(node.block.get());
-    if (!boundary) continue;
-    const std::string port = outerName(node, *boundary);
-    const PortType& type = boundary->type();
-    if (boundary->direction() == NetPort::Direction::In) {
-      until_inputs_.push_back(untilInput(node.name, port, type, until_spec.origin));
-    } else if (port == "done") {
-      if (type.name != PortType::of<std_msgs::Bool>().name) {
-        throw BlockError("property 'until_net': output 'done' of " + until_spec.origin + " is " + type.name +
-                         ", expected std_msgs/Bool");
-      }
-      until_done_ = node.name + ".value";
-    }
+  const Net& net = until_->net();
+  for (const std::string& port : netPortNames(net, NetPort::Direction::In)) {
+    const int node = findNetPort(net, NetPort::Direction::In, port);
+    until_inputs_.push_back(untilInput(net.node(node).name, port, netPortAt(net, node).type(), until_spec.origin));
   }
-  if (until_done_.empty()) {
+  const int done = findNetPort(net, NetPort::Direction::Out, "done");
+  if (done < 0) {
     throw BlockError("property 'until_net': " + until_spec.origin +
                      " has no output 'done' (an imagenets/SubNetOutput with port 'done', type std_msgs/Bool)");
   }
+  const PortType& type = netPortAt(net, done).type();
+  if (type.name != PortType::of<std_msgs::Bool>().name) {
+    throw BlockError("property 'until_net': output 'done' of " + until_spec.origin + " is " + type.name +
+                     ", expected std_msgs/Bool");
+  }
+  until_done_ = net.node(done).name + ".value";
 }
 
 SubNetBlock::UntilInPort SubNetBlock::untilInput(const std::string& block, const std::string& port,
