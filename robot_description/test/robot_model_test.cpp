@@ -27,6 +27,32 @@ std::string writeTemp(const std::string& text) {
   std::ofstream(name) << text;
   return name;
 }
+
+// The config `text` loaded from a temporary file: that file's path and the error ("no error").
+std::pair<std::string, std::string> errorOf(const std::string& text) {
+  const std::string path = writeTemp(text);
+  std::string what = "no error";
+  try {
+    loadRobotDescription(path);
+  } catch (const std::runtime_error& e) {
+    what = e.what();
+  }
+  std::remove(path.c_str());
+  return std::make_pair(path, what);
+}
+
+// `text` with the first `from` replaced by `to` (a test failure when it has no `from`).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+// The file's text (this package does not depend on imagenets, whose tests share a readFile).
+std::string fileText(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
 }  // namespace
 
 TEST(RobotModel, LoadsTheShippedDescription) {
@@ -122,8 +148,7 @@ TEST(RobotModel, CalibrationPoseShowsTheMarkerToBothCameras) {
 }
 
 TEST(RobotModel, FreeParamsNameWhatACalibrationEstimatesAndRefuseUnknownNames) {
-  std::ifstream example(exampleRobotDescriptionPath());
-  const std::string text((std::istreambuf_iterator<char>(example)), std::istreambuf_iterator<char>());
+  const std::string text = fileText(exampleRobotDescriptionPath());
   // Absent: everything that can be estimated (arm joints 2..n-1, the head joints after the pan).
   const RobotDescription all = loadRobotDescription(exampleRobotDescriptionPath());
   const FreeParams every = freeParams(all);
@@ -189,44 +214,27 @@ TEST(RobotModel, ACalibrationConfigWithoutAUrdfFileTakesTheOneGivenOrSaysWhatIsM
 // Bad calibration configs: each error names the file, the key or link, and what is wrong.
 TEST(RobotModel, BadCalibrationConfigsAreClearErrors) {
   const std::string dir = ros::package::getPath("robot_description") + "/config/six_axis/";
-  std::ifstream in(dir + "calibration.yaml");
-  const std::string config((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  auto errorOf = [](const std::string& text) {
-    const std::string path = writeTemp(text);
-    std::string what = "no error";
-    try {
-      loadRobotDescription(path);
-    } catch (const std::runtime_error& e) {
-      what = e.what();
-    }
-    std::remove(path.c_str());
-    return std::make_pair(path, what);
-  };
-  auto replaced = [&](const std::string& from, const std::string& to) {
-    std::string t = config;
-    const size_t at = t.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    return at == std::string::npos ? t : t.replace(at, from.size(), to);
-  };
+  const std::string config = fileText(dir + "calibration.yaml");
   useUrdfFile(dir + "robot.urdf");
   // An unknown key, at the top and inside a group.
   auto [path, what] = errorOf(config + "\nfree_parms: [fixed_point]\n");
   EXPECT_NE(what.find(path + ": unknown key 'free_parms' (known: urdf, name, base_frame, free_params, arm, head)"),
             std::string::npos)
       << what;
-  std::tie(path, what) = errorOf(replaced("  tip_link: flange", "  tip_lnk: flange"));
+  std::tie(path, what) = errorOf(replaced(config, "  tip_link: flange", "  tip_lnk: flange"));
   EXPECT_NE(what.find(path + ": arm: unknown key 'tip_lnk'"), std::string::npos) << what;
   // A link the URDF lacks.
-  std::tie(path, what) = errorOf(replaced("tip_link: flange", "tip_link: no_such_flange"));
+  std::tie(path, what) = errorOf(replaced(config, "tip_link: flange", "tip_link: no_such_flange"));
   EXPECT_NE(what.find("no_such_flange"), std::string::npos) << what;
   EXPECT_NE(what.find(dir + "robot.urdf"), std::string::npos) << what;
   // An interface's name that is no string, or no valid ROS name.
-  std::tie(path, what) = errorOf(replaced("  tip_link: flange", "  tip_link: flange\n  controller: [a, b]"));
+  std::tie(path, what) = errorOf(replaced(config, "  tip_link: flange", "  tip_link: flange\n  controller: [a, b]"));
   EXPECT_NE(what.find(path + ": arm.controller: expected a ROS name"), std::string::npos) << what;
-  std::tie(path, what) = errorOf(replaced("    left_link:", "    namespace: 'stereo pair'\n    left_link:"));
+  std::tie(path, what) = errorOf(replaced(config, "    left_link:", "    namespace: 'stereo pair'\n    left_link:"));
   EXPECT_NE(what.find(path + ": head.stereo_camera.namespace: 'stereo pair' is no valid ROS name"), std::string::npos)
       << what;
-  std::tie(path, what) = errorOf(replaced("  tip_link: head_tilt_link", "  tip_link: head_tilt_link\n  controler: x"));
+  std::tie(path, what) =
+      errorOf(replaced(config, "  tip_link: head_tilt_link", "  tip_link: head_tilt_link\n  controler: x"));
   EXPECT_NE(what.find(path + ": head: unknown key 'controler' (known: "), std::string::npos) << what;
   // A URDF that does not parse: the file and the parser's own reason.
   const std::string broken = writeTemp("<robot name='cut short'><link name='base_link'/><joint");
@@ -235,6 +243,22 @@ TEST(RobotModel, BadCalibrationConfigsAreClearErrors) {
   EXPECT_NE(what.find(broken), std::string::npos) << what;
   EXPECT_NE(what.find(": not a valid URDF: Failed to read Element name"), std::string::npos) << what;  // tinyxml2's
   std::remove(broken.c_str());
+  useUrdfFile("");
+}
+
+// head.mono_camera.namespace is checked as head.stereo_camera.namespace is: a value that is no valid
+// ROS name is refused, naming the file, the key and the value.
+TEST(RobotModel, AMonoCameraNamespaceThatIsNoRosNameIsAClearError) {
+  const std::string dir = ros::package::getPath("robot_description") + "/config/mobile_manipulator/";
+  const std::string config = fileText(dir + "calibration.yaml");
+  useUrdfFile(dir + "robot.urdf");
+  auto [path, what] = errorOf(config);
+  EXPECT_EQ(what, "no error");  // the shipped config loads from the temporary file's folder too
+  std::tie(path, what) = errorOf(replaced(config, "    namespace: head_camera", "    namespace: 'head camera'"));
+  EXPECT_NE(what.find(path + ": head.mono_camera.namespace: 'head camera' is no valid ROS name"), std::string::npos)
+      << what;
+  std::tie(path, what) = errorOf(replaced(config, "    namespace: head_camera", "    namespace: [head_camera]"));
+  EXPECT_NE(what.find(path + ": head.mono_camera.namespace: expected a ROS name"), std::string::npos) << what;
   useUrdfFile("");
 }
 
