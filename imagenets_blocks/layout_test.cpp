@@ -1,12 +1,12 @@
 // The block library's rooms: a category folder holds blocks only (each .cpp registers one, beside
 // its test); what blocks share is in common/, and maths worth having without a block is in the
 // library imagenets_vision/. A helper added beside the blocks fails here, naming the file.
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <boost/filesystem.hpp>
 #include <gtest/gtest.h>
+
+#include "imagenets/testing/read_file.h"
 
 namespace fs = boost::filesystem;
 
@@ -29,10 +29,7 @@ TEST(BlockLibraryLayout, EveryFileInACategoryFolderIsABlockOrItsTest) {
         continue;
       }
       if (ext != ".cpp" || (stem.size() > 5 && stem.compare(stem.size() - 5, 5, "_test") == 0)) continue;
-      std::ifstream in(path);
-      std::stringstream text;
-      text << in.rdbuf();
-      EXPECT_NE(text.str().find("IMAGENETS_REGISTER_BLOCK("), std::string::npos)
+      EXPECT_NE(imagenets::testing::readFile(path).find("IMAGENETS_REGISTER_BLOCK("), std::string::npos)
           << path << " registers no block: library code goes in imagenets_vision/, block helpers in "
                      "imagenets_blocks/common/";
       ++blocks;

@@ -15,6 +15,7 @@
 #include "imagenets/executor.h"
 #include "imagenets/net.h"
 #include "imagenets/package_file.h"
+#include "imagenets/testing/read_file.h"
 
 namespace imagenets_calibration {
 namespace {
@@ -127,11 +128,7 @@ TEST_F(CalibrationNet, ReplayThroughTheNetGivesTheLibrarysResultForBothMethods) 
 
 TEST_F(CalibrationNet, ABadReplayFileIsANamedError) {
   const std::string file = storedFile();
-  std::string text;
-  {
-    std::ifstream in(file);
-    text.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  std::string text = imagenets::testing::readFile(file);
   // Sample 3's arm joints become a word.
   const auto at = text.find("arm_q", text.find("arm_q", text.find("arm_q", text.find("arm_q") + 1) + 1) + 1);
   ASSERT_NE(at, std::string::npos);

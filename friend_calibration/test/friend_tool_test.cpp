@@ -3,26 +3,22 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 #include <boost/filesystem.hpp>
 #include <gtest/gtest.h>
 
 #include "imagenets/testing/command_runner.h"
+#include "imagenets/testing/read_file.h"
 #include "imagenets_calibration/bag_recorder.h"
 
 namespace {
 
 using imagenets::testing::expectContains;
+using imagenets::testing::readFile;
+using imagenets::testing::tempPath;
+using imagenets::testing::tool;  // `imagenets ARGS`, run in this package's folder
 using Result = imagenets::testing::CommandResult;
-
-// `imagenets ARGS`, run in this package's folder.
-Result tool(const std::string& args, bool stdout_only = false) {
-  return imagenets::testing::runCommand(IMAGENETS_TOOL, args, stdout_only);
-}
-
-std::string temp(const std::string& name) { return imagenets::testing::tempPath(name); }
 
 }  // namespace
 
@@ -31,7 +27,7 @@ std::string temp(const std::string& name) { return imagenets::testing::tempPath(
 // (test/six_axis_calibration.yaml, written by the calibration node on robot_description's six_axis in
 // the simulator) with that robot's kinematics, and finds the stored fixed point again.
 TEST(Tool, RunSetAllGivesEveryBlockOfTheNetTreeTheRobotDescription) {
-  const std::string dir = temp("six_axis_replay");
+  const std::string dir = tempPath("six_axis_replay");
   const std::string replay = "run config/nets/calibration.yaml --set samples.net=$(rospack find imagenets_calibration)/config/nets/calibration_sample_replay.yaml "
                              "--set plan.replay=" +
                              boost::filesystem::absolute("test/six_axis_calibration.yaml").string() +
@@ -39,11 +35,9 @@ TEST(Tool, RunSetAllGivesEveryBlockOfTheNetTreeTheRobotDescription) {
   Result r = tool(replay + "--set-all description=$(rospack find robot_description)/config/six_axis/robot.yaml --output-dir " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
   expectContains(r.output, "--set-all description: plan samples/until/solve solve");
-  std::ifstream in(dir + "/fixed_point.value.yaml");
-  std::stringstream fixed;
-  fixed << in.rdbuf();
-  expectContains(fixed.str(), "x: -0.08977030358");  // the stored fixed_point: [-0.089770303580141764, ...
-  expectContains(fixed.str(), "z: 1.28800168702");
+  const std::string fixed = readFile(dir + "/fixed_point.value.yaml");
+  expectContains(fixed, "x: -0.08977030358");  // the stored fixed_point: [-0.089770303580141764, ...
+  expectContains(fixed, "z: 1.28800168702");
   // Without it the blocks compute with the net's robot (FRIEND's 7-joint arm).
   r = tool(replay);
   EXPECT_EQ(r.status, 1);
@@ -143,7 +137,7 @@ TEST(Tool, HelpListsThePackagesCommands) {
 // `calibrate --bag` with a bag that lacks the cameras: the error names the missing topic (and what
 // the bag has), with no master needed, and the output file of a previous calibration stays as it was.
 TEST(Tool, CalibrateFromABagWithoutTheNeededTopicsNamesTheTopicAndKeepsTheOutput) {
-  const std::string dir = temp("calibrate_bag");
+  const std::string dir = tempPath("calibrate_bag");
   boost::filesystem::create_directories(dir);
   const std::string bag = dir + "/joints_only.bag";
   {
@@ -162,10 +156,7 @@ TEST(Tool, CalibrateFromABagWithoutTheNeededTopicsNamesTheTopicAndKeepsTheOutput
   EXPECT_EQ(r.status, 1) << r.output;
   expectContains(r.output, "no topic '/stereo/left/image_raw' (the left camera's images); the bag has /joint_states");
   expectContains(r.output, output + " is unchanged");
-  std::ifstream in(output);
-  std::stringstream kept;
-  kept << in.rdbuf();
-  EXPECT_EQ(kept.str(), "a previous calibration\n");
+  EXPECT_EQ(readFile(output), "a previous calibration\n");
   // --bag needs the robot's description; the offline options go with --bag only.
   r = tool("calibrate --bag " + bag);
   EXPECT_EQ(r.status, 2);

@@ -1,11 +1,10 @@
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include <boost/filesystem.hpp>
 #include <gtest/gtest.h>
 
 #include "imagenets/blocks/block_harness.h"
+#include "imagenets/testing/read_file.h"
 #include "imagenets/vision/point_cloud.h"
 
 using namespace imagenets::blocks;
@@ -15,10 +14,7 @@ TEST(PointCloudFileSink, WritesBinaryPly) {
   BlockHarness h("imagenets/PointCloudFileSink");
   h.set("path", path).input("cloud", imagenets::cloud::makeCloud({{1, 2, 3, 10, 20, 30}, {4, 5, 6, 40, 50, 60}}, true));
   h.run();
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream all;
-  all << in.rdbuf();
-  const std::string text = all.str();
+  const std::string text = imagenets::testing::readFile(path);
   const auto end = text.find("end_header\n");
   ASSERT_NE(end, std::string::npos);
   EXPECT_NE(text.find("element vertex 2"), std::string::npos);

@@ -10,10 +10,13 @@
 #include <gtest/gtest.h>
 #include <urdf/model.h>
 
+#include "imagenets/testing/read_file.h"
+
 namespace imagenets_calibration {
 namespace {
 
 namespace fs = std::filesystem;
+using imagenets::testing::readFile;
 
 // `text` with the CRC line a saved file ends with (storage.h).
 std::string withCrc(const std::string& text) {
@@ -97,8 +100,7 @@ TEST_F(StorageTest, AMonoCamerasObservationsAreKeptAndAStereoFileHasNone) {
   c.result = someResult();
   const std::string stereo = (dir / "stereo.yaml").string();
   EXPECT_EQ(saveCalibration(c, stereo), "");
-  std::ifstream in(stereo);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = readFile(stereo);
   EXPECT_EQ(text.find("mono:"), std::string::npos);
 }
 
@@ -107,13 +109,11 @@ TEST_F(StorageTest, PreviousFileIsArchivedAndNoTemporaryFileRemains) {
   c.result = someResult();
   const std::string path = (dir / "pth_fixed_point.yaml").string();
   saveCalibration(c, path);
-  std::ifstream first(path);
-  const std::string before((std::istreambuf_iterator<char>(first)), std::istreambuf_iterator<char>());
+  const std::string before = readFile(path);
   c.created = "2030-01-01T00:00:00Z";
   const std::string archived = saveCalibration(c, path);
   ASSERT_FALSE(archived.empty());
-  std::ifstream a(archived);
-  const std::string kept((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+  const std::string kept = readFile(archived);
   EXPECT_EQ(kept, before);
   int files = 0;
   for (const auto& e : fs::directory_iterator(dir)) {
@@ -147,8 +147,7 @@ TEST_F(StorageTest, TruncatedCorruptOrEmptyFilesAreRefused) {
   c.result = someResult();
   const std::string path = (dir / "pth_fixed_point.yaml").string();
   saveCalibration(c, path);
-  std::ifstream in(path);
-  const std::string whole((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string whole = readFile(path);
   ASSERT_NO_THROW(loadCalibration(path));
   const std::string damaged = (dir / "damaged.yaml").string();
   auto refusal = [&](const std::string& content) -> std::string {
@@ -214,8 +213,7 @@ TEST_F(StorageTest, CalibratedUrdfCarriesTheFixedPointMarkerOffsetAndJointOffset
   }
   expectSameFrame(originOf(urdf, "head_tilt_joint"), Eigen::Isometry3d(Eigen::AngleAxisd(0.005, Eigen::Vector3d::UnitZ())),
                   "head_tilt_joint");
-  std::ifstream f(path);
-  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const std::string text = readFile(path);
   EXPECT_NE(text.find("arm_joint_3 -1.14591559 deg"), std::string::npos) << text.substr(0, 800);
   EXPECT_NE(text.find("robot_state_publisher ignores <calibration>"), std::string::npos);
   EXPECT_EQ(urdfFileBeside((dir / "pth_fixed_point.yaml").string()), path);
@@ -242,8 +240,7 @@ TEST_F(StorageTest, CalibratedUrdfOfARobotWithItsOwnUrdfKeepsItsNames) {
   EXPECT_EQ(urdf.getName(), "six_axis");
   expectSameFrame(originOf(urdf, "head_mast"), r.fixed_point, "head mount = fixed point");
   EXPECT_TRUE(urdf.getLink("head_mount") && urdf.getLink("shoulder") && !urdf.getLink("head_link_0"));
-  std::ifstream f(path);
-  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const std::string text = readFile(path);
   EXPECT_NE(text.find("joint head_mast (base_link -> head_mount, the calibrated pth_fixed_point)"), std::string::npos)
       << text.substr(0, 800);
   EXPECT_NE(text.find("elbow -1.14591559 deg"), std::string::npos) << text.substr(0, 800);

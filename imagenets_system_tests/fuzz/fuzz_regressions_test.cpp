@@ -2,13 +2,12 @@
 // parser it broke: it must now be refused with an error that names the file (or be accepted), and
 // nothing may crash. Run by `make test`; the fuzzers themselves run with `make fuzz`.
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
 #include <boost/filesystem.hpp>
 #include <gtest/gtest.h>
 
 #include "fuzz_targets.h"
+#include "imagenets/testing/read_file.h"
 
 namespace fs = boost::filesystem;
 
@@ -23,12 +22,10 @@ TEST(FuzzRegressions, EveryFoundInputIsRefusedWithANamedErrorOrAccepted) {
     const auto& target = imagenets::fuzz::target(dir.path().filename().string());  // a folder per target
     for (const auto& entry : fs::directory_iterator(dir.path())) {
       const std::string file = entry.path().string();
-      std::ifstream in(file, std::ios::binary);
-      std::stringstream input;
-      input << in.rdbuf();
+      const std::string input = imagenets::testing::readFile(file);
       ++cases;
       try {
-        target.parse(input.str(), file);
+        target.parse(input, file);
       } catch (const std::exception& e) {
         const std::string what = e.what();
         EXPECT_FALSE(what.empty()) << target.name << ": " << file;

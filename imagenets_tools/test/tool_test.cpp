@@ -10,18 +10,15 @@
 #include <gtest/gtest.h>
 
 #include "imagenets/testing/command_runner.h"
+#include "imagenets/testing/read_file.h"
 
 namespace {
 
 using imagenets::testing::expectContains;
+using imagenets::testing::readFile;
+using imagenets::testing::tempPath;
+using imagenets::testing::tool;  // `imagenets ARGS`, run in imagenets_blocks' folder
 using Result = imagenets::testing::CommandResult;
-
-// `imagenets ARGS`, run in imagenets_blocks' folder.
-Result tool(const std::string& args, bool stdout_only = false) {
-  return imagenets::testing::runCommand(IMAGENETS_TOOL, args, stdout_only);
-}
-
-std::string temp(const std::string& name) { return imagenets::testing::tempPath(name); }
 
 }  // namespace
 
@@ -51,7 +48,7 @@ TEST(Tool, ValidateSaysOkOrListsErrors) {
   Result ok = tool("validate config/nets/threshold_demo.yaml");
   EXPECT_EQ(ok.status, 0);
   expectContains(ok.output, "OK config/nets/threshold_demo.yaml");
-  const std::string bad = temp("bad.yaml");
+  const std::string bad = tempPath("bad.yaml");
   std::ofstream(bad) << "blocks:\n  t: {type: imagenets/Treshold}\n  g: {type: imagenets/Grayscale, properties: {x: 1}}\n";
   Result r = tool("validate " + bad);
   EXPECT_EQ(r.status, 1);
@@ -77,7 +74,7 @@ TEST(Tool, ValidateAcceptsEveryShippedNet) {
 }
 
 TEST(Tool, RunWritesOutputsAndTimings) {
-  const std::string dir = temp("run_out");
+  const std::string dir = tempPath("run_out");
   Result r = tool("run config/nets/threshold_demo.yaml --set threshold.threshold=90 --output-dir " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
   expectContains(r.output, "4 blocks ran, 0 failed");
@@ -106,23 +103,21 @@ TEST(Tool, RunSetAllOfAPropertyNoBlockHasIsAUsageError) {
 }
 
 TEST(Tool, RunWritesTheFeedbackTrace) {
-  const std::string dir = temp("fb_out");
+  const std::string dir = tempPath("fb_out");
   Result r = tool("run config/nets/feedback_threshold.yaml --trials --output-dir " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
   expectContains(r.output, "threshold: feedback trial 41 of 41: threshold = ");
-  std::ifstream in(dir + "/threshold.feedback_trace.yaml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  expectContains(ss.str(), "trials: 41");
-  expectContains(ss.str(), "stop_reason: all_tried");
-  expectContains(ss.str(), "found: 1");
+  const std::string trace = readFile(dir + "/threshold.feedback_trace.yaml");
+  expectContains(trace, "trials: 41");
+  expectContains(trace, "stop_reason: all_tried");
+  expectContains(trace, "found: 1");
   EXPECT_TRUE(boost::filesystem::exists(dir + "/threshold.feedback_trace.png"));
 }
 
 TEST(Tool, DetectByDefaultFindsTheMarkerInADimSceneThatThePapersRangeMisses) {
   // Illumination 18 %, dark wall: the paper is darker than 40, so every threshold of the
   // paper's 40..80 merges the black border with the margin and the wall (docs/markers.md).
-  const std::string dir = temp("dim_scene");
+  const std::string dir = tempPath("dim_scene");
   Result r = tool("run config/nets/marker_image_generation.yaml --quiet --set render.illumination=0.18 "
                   "--set render.background=0.1 --set render.tilt=0 --set render.supersampling=2 --output-dir " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
@@ -145,7 +140,7 @@ TEST(Tool, DetectByDefaultFindsTheMarkerInADimSceneThatThePapersRangeMisses) {
 }
 
 TEST(Tool, DetectATargetFilePrintsItsCornersWithIdsAndThePose) {
-  const std::string dir = temp("target_scene");
+  const std::string dir = tempPath("target_scene");
   const std::string targets = "$(rospack find imagenets_vision)/config/targets/";
   Result r = tool("run config/nets/marker_image_generation.yaml --quiet --set render.target=" + targets +
                   "aprilgrid_36h11_4x3.yaml --set render.distance=0.45 --set render.tilt=20 --set render.supersampling=2 "
@@ -174,7 +169,7 @@ TEST(Tool, DetectATargetFilePrintsItsCornersWithIdsAndThePose) {
   expectContains(r.output, "found: false");
 
   // A bad target file: its name and key, before any image.
-  const std::string bad = temp("bad_target.yaml");
+  const std::string bad = tempPath("bad_target.yaml");
   std::ofstream(bad) << "type: apriltag\nfamily: tag36h11\nid: 600\nsize: 0.06\n";
   r = tool("detect --target " + bad + camera + image);
   EXPECT_EQ(r.status, 1) << r.output;
@@ -187,7 +182,7 @@ TEST(Tool, DetectATargetFilePrintsItsCornersWithIdsAndThePose) {
 TEST(Tool, MarkerStudyWithDecoysCountsFalsePositives) {
   // Three views (tilt 0, 35 and 70 deg at pan 15) of the paper's even lighting, each also with a decoy in
   // the marker's place; the calibration's net given by --calibration-net.
-  const std::string dir = temp("decoys");
+  const std::string dir = tempPath("decoys");
   const Result r = tool("marker-study --conditions even --quick --pan 15:15:90 --decoys --threads 2 "
                         "--calibration-net config/nets/calibration_marker_detection.yaml -o " + dir, true);
   ASSERT_EQ(r.status, 0) << r.output;
@@ -205,15 +200,13 @@ TEST(Tool, MarkerStudyWithDecoysCountsFalsePositives) {
 }
 
 TEST(Tool, GraphDrawsAnSvg) {
-  const std::string svg = temp("net.svg");
+  const std::string svg = tempPath("net.svg");
   Result r = tool("graph config/nets/feedback_threshold.yaml -o " + svg);
   ASSERT_EQ(r.status, 0) << r.output;
-  std::ifstream in(svg);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  expectContains(ss.str(), "<svg");
-  expectContains(ss.str(), "threshold");
-  expectContains(ss.str(), "feedback: threshold (max)");
+  const std::string drawing = readFile(svg);
+  expectContains(drawing, "<svg");
+  expectContains(drawing, "threshold");
+  expectContains(drawing, "feedback: threshold (max)");
 }
 
 // The sub-command names from `imagenets --help`: one line each, "  NAME  summary".

@@ -1,7 +1,8 @@
-// What the rostests of this folder share around files and processes: a file's bytes, and a program
-// (a node, robot_state_publisher) started as a child process, its output in a log file if asked (a
-// message on /rosout sent while a node starts could be lost before the test's connection is up;
-// what the node prints is not). A command run to its end: imagenets/testing/command_runner.h.
+// What the rostests of this folder share around files and processes: a file's bytes (readFile, from
+// imagenets/testing/read_file.h), and a program (a node, robot_state_publisher) started as a child
+// process, its output in a log file if asked (a message on /rosout sent while a node starts could
+// be lost before the test's connection is up; what the node prints is not). A command run to its
+// end: imagenets/testing/command_runner.h.
 #pragma once
 
 #include <fcntl.h>
@@ -10,22 +11,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <ros/ros.h>
 
+#include "imagenets/testing/read_file.h"
 #include "imagenets/testing/rostest_util.h"
 
-// The file's bytes ("" when it cannot be read).
-inline std::string readFile(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using imagenets::testing::readFile;
 
 // A child process, stopped with SIGINT when it goes (SIGKILL if it has not ended 30 s later).
 class ChildProcess {

@@ -1,17 +1,17 @@
 // The net a page edits as a whole: a net opened from a file can be cleared and built anew, each
 // opened net is a new document (its state and its port values say which, so nothing shown of one
 // net carries over to another), and one block can run alone on its current inputs.
-#include <fstream>
-#include <sstream>
-
 #include "designer_test_util.h"
 #include "imagenets/net.h"
+#include "imagenets/testing/read_file.h"
 
 using namespace imagenets;
 using namespace imagenets::designer;
 using nlohmann::json;
 
 namespace {
+
+using imagenets::testing::readFile;
 
 json netState(DesignerClient& c) {
   const json reply = c.request({{"op", "hello"}});
@@ -24,13 +24,6 @@ const json& blockOf(const json& net, const std::string& name) {
     if (b["name"] == name) return b;
   }
   throw std::runtime_error("no block " + name + " in " + net.dump());
-}
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 }  // namespace

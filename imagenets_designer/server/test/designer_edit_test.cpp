@@ -1,9 +1,6 @@
 // Editing a net through the protocol: the engine validates every edit (a refused one changes
 // nothing), undo/redo, incremental re-runs after a property change, several tabs on one net,
 // saving (the file loads as the same net; an unchanged hand-written net keeps its text).
-#include <fstream>
-#include <sstream>
-
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -12,12 +9,15 @@
 #include "imagenets/net_writer.h"
 #include "imagenets/registry.h"
 #include "imagenets/package_file.h"
+#include "imagenets/testing/read_file.h"
 
 using namespace imagenets;
 using namespace imagenets::designer;
 using nlohmann::json;
 
 namespace {
+
+using imagenets::testing::readFile;
 
 json addBlock(DesignerClient& c, const std::string& type, const std::string& name) {
   json reply = c.request({{"op", "add_block"}, {"type", type}, {"name", name}, {"position", {10, 20}}});
@@ -34,13 +34,6 @@ void buildChain(DesignerClient& c) {
   addBlock(c, "imagenets/Threshold", "threshold");
   expectOk(c.request({{"op", "add_link"}, {"from", "source.image"}, {"to", "gray.image"}}));
   expectOk(c.request({{"op", "add_link"}, {"from", "gray.image"}, {"to", "threshold.image"}}));
-}
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 const json& blockOf(const json& net, const std::string& name) {

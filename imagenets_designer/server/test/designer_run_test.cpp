@@ -6,10 +6,10 @@
 #include <unistd.h>
 
 #include <fstream>
-#include <sstream>
 
 #include "designer_test_util.h"
 #include "imagenets/executor.h"
+#include "imagenets/testing/read_file.h"
 
 using namespace imagenets;
 using namespace imagenets::designer;
@@ -17,12 +17,7 @@ using nlohmann::json;
 
 namespace {
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using imagenets::testing::readFile;
 
 std::string commandOutput(const std::string& cmd, int& status) {
   std::string out;

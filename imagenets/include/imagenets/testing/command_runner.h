@@ -31,6 +31,14 @@ inline CommandResult runCommand(const std::string& program, const std::string& a
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
+#ifdef IMAGENETS_TOOL
+// `imagenets ARGS`, run as runCommand runs it, in the test's working folder. IMAGENETS_TOOL is the
+// program's path: the test target defines it (target_compile_definitions in its CMakeLists).
+inline CommandResult tool(const std::string& args, bool stdout_only = false) {
+  return runCommand(IMAGENETS_TOOL, args, stdout_only);
+}
+#endif
+
 inline void expectContains(const std::string& text, const std::string& part) {
   EXPECT_NE(text.find(part), std::string::npos) << "missing \"" << part << "\" in:\n" << text;
 }
