@@ -193,9 +193,7 @@ class BlockHost {
 
   void onInput(size_t input, const Value& value) {
     std::lock_guard<std::mutex> lock(mutex_);
-    std::optional<std::vector<Value>> set = pairing_->add(input, value);
-    if (!set) return;
-    cached_inputs_ = std::move(*set);
+    if (!pairing_->add(input, value, &cached_inputs_)) return;
     have_inputs_ = true;
     runLocked();
   }

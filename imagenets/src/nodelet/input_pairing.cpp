@@ -42,7 +42,7 @@ Value InputPairing::partner(size_t input, const ros::Time& stamp) const {
   return best;
 }
 
-std::optional<std::vector<Value>> InputPairing::add(size_t input, const Value& value) {
+bool InputPairing::add(size_t input, const Value& value, std::vector<Value>* set) {
   auto& h = history_.at(input);
   // A single input pairs with nothing: holding older messages would only keep their buffers
   // (images) alive, so the allocator cannot hand them out again.
@@ -53,8 +53,11 @@ std::optional<std::vector<Value>> InputPairing::add(size_t input, const Value& v
     h.push_back(value);
     while (h.size() > keep) h.pop_front();
   }
-  if (isSource()) return std::nullopt;
-  if (history_.size() == 1) return std::vector<Value>{value};
+  if (isSource()) return false;
+  if (history_.size() == 1) {
+    set->assign(1, value);
+    return true;
+  }
 
   // The time this set is about: the arrival's stamp, or (for a time-less arrival) the newest
   // stamp held by a required input (by any input when none is required).
@@ -66,17 +69,18 @@ std::optional<std::vector<Value>> InputPairing::add(size_t input, const Value& v
       }
     }
   }
-  std::vector<Value> set(history_.size());
+  std::vector<Value> found(history_.size());
   for (size_t j = 0; j < history_.size(); ++j) {
     if (j == input) {
-      set[j] = value;
+      found[j] = value;
       continue;
     }
-    set[j] = partner(j, reference);
-    if (!set[j] && !required_[j] && !history_[j].empty()) set[j] = history_[j].back();
-    if (!set[j] && required_[j]) return std::nullopt;
+    found[j] = partner(j, reference);
+    if (!found[j] && !required_[j] && !history_[j].empty()) found[j] = history_[j].back();
+    if (!found[j] && required_[j]) return false;
   }
-  return set;
+  *set = std::move(found);
+  return true;
 }
 
 }  // namespace imagenets

@@ -10,7 +10,6 @@
 #pragma once
 
 #include <deque>
-#include <optional>
 #include <vector>
 
 #include <ros/time.h>
@@ -34,8 +33,9 @@ class InputPairing {
   const PairingOptions& options() const { return options_; }
   bool isSource() const { return source_; }
 
-  // Records `value` on `input`; returns the complete input set this arrival makes, if any.
-  std::optional<std::vector<Value>> add(size_t input, const Value& value);
+  // Records `value` on `input`; when this arrival completes an input set, writes it to `set` (one
+  // value per input; nothing is allocated when `set` has that size already) and returns true.
+  bool add(size_t input, const Value& value, std::vector<Value>* set);
   // The latest value of every input (for sources: what the optional inputs hold now).
   std::vector<Value> latest() const;
 
