@@ -50,7 +50,7 @@ constexpr int kBlocks = 5;
 constexpr int kHops = kBlocks + 1;  // driver -> block 1 -> ... -> block 5 -> driver
 // In one manager, per chain: latency samples, one image in flight, block and plain taking turns
 // image by image; throughput in kRounds rounds, the two chains taking turns round by round.
-constexpr int kLatencySamples = 10000;
+constexpr int kLatencySamples = 30000;
 constexpr int kThroughputMessages = 20000;
 constexpr int kRounds = 20;
 constexpr int kWindow = 2;  // messages in flight during the throughput run
