@@ -1,6 +1,7 @@
 // The generic nodelet host (see block_nodelet.h for what it offers a launch file).
 #include "imagenets/block_nodelet.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <functional>
@@ -193,9 +194,13 @@ class BlockHost {
 
   void onInput(size_t input, const Value& value) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!pairing_->add(input, value, &cached_inputs_)) return;
+    if (!pairing_->add(input, value, &arrived_)) return;
+    std::swap(cached_inputs_, arrived_);
     have_inputs_ = true;
     runLocked();
+    // The previous inputs go only now that the outputs are on their way: this block may hold the
+    // last reference to an image, and freeing its buffer is no business of the next block's.
+    std::fill(arrived_.begin(), arrived_.end(), Value());
   }
 
   // Runs the block on the cached inputs (sources: on their optional inputs' latest values) and
@@ -404,6 +409,7 @@ class BlockHost {
   std::mutex mutex_;  // callbacks of one nodelet are serial already; services and timers join them
   std::unique_ptr<InputPairing> pairing_;
   std::vector<Value> cached_inputs_;
+  std::vector<Value> arrived_;  // the set being completed, then the previous one until released
   bool have_inputs_ = false;
   bool ran_once_ = false;
 
